@@ -1,0 +1,63 @@
+// voxlab: cameras and the rays they shoot.
+//
+// Conventions (the README has the full table):
+//  - Axis views "+x -x +y -y +z -z" name the direction in which rays travel.
+//  - Image pixel (px, py), py growing downwards, has its centre at
+//    (px + 1/2, py + 1/2).
+//  - An orthographic axis view scales the box's projected rectangle
+//    uniformly to fit the image, centred. When the image size equals the
+//    projected dimensions in voxels (and the spacing is the same along both
+//    image axes), pixel centres fall exactly on voxel centres.
+//  - The orbit camera looks at the box centre from azimuth/elevation
+//    (degrees) at a distance given in units of the box's bounding-sphere
+//    radius. Azimuth 0, elevation 0 is the +z view; azimuth 90 is +x;
+//    positive elevation looks down from above (from -y, the image "up" of the
+//    horizontal views).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+namespace voxlab {
+
+enum class Projection { Orthographic, Perspective };
+
+const char* projectionName(Projection p);
+Projection parseProjection(const std::string& name);  // throws voxlab::Error
+
+struct CameraSpec {
+    // Either an axis view ("+x", ..., "-z") or an orbit (when view is empty).
+    std::string view;
+    double azimuth = 30.0;    // degrees
+    double elevation = 20.0;  // degrees
+    double distance = 2.6;    // in bounding-sphere radii (perspective)
+    double fov = 30.0;        // vertical field of view, degrees (perspective)
+    double zoom = 1.0;        // >1 magnifies
+    Projection projection = Projection::Perspective;
+};
+
+bool isAxisView(const std::string& view);
+
+// The camera as the renderers use it: a ray for every pixel.
+struct Camera {
+    glm::dvec3 position{0.0};  // eye (perspective) or centre of the image plane (ortho)
+    glm::dvec3 forward{0.0, 0.0, 1.0};
+    glm::dvec3 right{1.0, 0.0, 0.0};
+    glm::dvec3 down{0.0, 1.0, 0.0};
+    Projection projection = Projection::Orthographic;
+    // Orthographic: world units per pixel. Perspective: tan(fov/2) / (height/2).
+    double pixelScale = 1.0;
+    int width = 1;
+    int height = 1;
+
+    // Builds the camera for a box [0, extent] and an image of width x height.
+    static Camera make(const CameraSpec& spec, glm::dvec3 extent, int width, int height);
+
+    // Ray through the centre of pixel (px, py) (continuous pixel coordinates,
+    // so pass px + 0.5 for a pixel centre). Direction is unit length.
+    void ray(double px, double py, glm::dvec3* origin, glm::dvec3* direction) const;
+};
+
+}  // namespace voxlab

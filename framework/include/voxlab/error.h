@@ -1,0 +1,19 @@
+// voxlab: one exception type for every user-facing failure.
+//
+// The message of a voxlab::Error is meant to be printed as-is, on one line,
+// by the command line ("voxlab: <message>") and by the viewer's overlay. It
+// should name the thing at fault (a file, a scene key, a shader line) and the
+// problem, e.g. "bonsai.nrrd: truncated data: expected 16777216 bytes, got 512".
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace voxlab {
+
+class Error : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+}  // namespace voxlab

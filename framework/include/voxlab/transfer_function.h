@@ -1,0 +1,75 @@
+// voxlab: the 1D transfer function (classification).
+//
+// A transfer function maps a data value v (in the data's own units, e.g.
+// Hounsfield-like CT numbers, not 0..255) to a colour and an opacity. It is
+// given by control points {value, color, alpha} and is piecewise linear
+// between them, constant (clamped) outside them.
+//
+// Opacity is per unit length, where the unit is the volume's smallest voxel
+// spacing; a sample taken with step `s` uses alpha' = 1 - (1 - alpha)^s
+// (opacity correction; see the README's rendering conventions).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json_fwd.hpp>
+
+namespace voxlab {
+
+struct ControlPoint {
+    double value = 0.0;
+    glm::vec3 color{1.0f};
+    float alpha = 1.0f;
+};
+
+// A baked lookup table: `size` RGBA entries; entry i holds the function at
+// value lo + i*(hi-lo)/(size-1). Reading it with linear interpolation
+// between entries reproduces the piecewise-linear function within
+// `maxError` (checked on the CPU when baked).
+struct TransferFunctionTable {
+    double lo = 0.0;
+    double hi = 1.0;
+    int size = 0;
+    std::vector<glm::vec4> rgba;
+    double maxError = 0.0;
+
+    // Linear interpolation between entries, as the GPU does it.
+    glm::vec4 lookup(double value) const;
+};
+
+class TransferFunction {
+public:
+    TransferFunction() = default;
+    explicit TransferFunction(std::vector<ControlPoint> points);
+
+    // Points sorted by value (stable for equal values, which make a step).
+    const std::vector<ControlPoint>& points() const { return points_; }
+    bool empty() const { return points_.empty(); }
+
+    // Exact evaluation of the piecewise-linear function (rgb, alpha).
+    glm::vec4 evaluate(double value) const;
+
+    // Bakes a table over [lo, hi] whose linear interpolation stays within
+    // `tolerance` of evaluate() everywhere in [lo, hi]: the size grows (by
+    // powers of two, from 256 up to maxSize) until the worst error, found at
+    // the control points where the function bends, is small enough.
+    TransferFunctionTable bake(double lo, double hi, double tolerance = 0.5 / 255.0,
+                               int maxSize = 16384) const;
+
+    // JSON: an array of {"value": v, "color": [r,g,b], "alpha": a}, or an
+    // object {"points": [...]}. Errors name the offending entry and key, e.g.
+    // "transfer_function[2].color: expected an array of 3 numbers".
+    static TransferFunction fromJson(const nlohmann::json& j, const std::string& where);
+    static TransferFunction load(const std::string& path);
+    nlohmann::json toJson() const;
+
+    // A grey ramp from (lo, alpha 0) to (hi, alpha 1).
+    static TransferFunction ramp(double lo, double hi);
+
+private:
+    std::vector<ControlPoint> points_;
+};
+
+}  // namespace voxlab

@@ -1,0 +1,104 @@
+// voxlab: a scalar volume on a regular grid, in its own value range.
+//
+// Layout: x varies fastest, then y, then z. Voxel (i,j,k) lives at index
+// i + nx*(j + ny*k) and its centre is at world position
+// ((i+1/2)*sx, (j+1/2)*sy, (k+1/2)*sz); the volume's box is [0, n*s] on each
+// axis (see "Rendering conventions" in the README).
+//
+// Values keep their native type and range: a 12-bit CT stored as uint16 has
+// values 0..4095, a signed CT stays signed. Nothing is rescaled to 0..255.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace voxlab {
+
+enum class VoxelType { UInt8, UInt16, Int16, Float32 };
+
+// "uint8", "uint16", "int16", "float32".
+const char* voxelTypeName(VoxelType type);
+std::size_t voxelTypeSize(VoxelType type);
+
+// Counts of voxel values in `bins` equal-width bins spanning [lo, hi].
+// Bin b covers [lo + b*w, lo + (b+1)*w) with w = (hi-lo)/bins; the value hi
+// falls in the last bin. When lo == hi every voxel is in bin 0.
+struct Histogram {
+    double lo = 0.0;
+    double hi = 0.0;
+    std::vector<std::uint64_t> counts;
+
+    double binWidth() const;
+    std::uint64_t total() const;
+};
+
+// The largest volume voxlab accepts, in voxels (2^31: e.g. 1290^3). Loaders
+// refuse anything larger before allocating, with a one-line error.
+constexpr std::uint64_t kMaxVoxels = std::uint64_t(1) << 31;
+
+class Volume {
+public:
+    Volume() = default;
+    // `bytes` holds dims.x*dims.y*dims.z voxels of `type`, little-endian
+    // (host order), x fastest. Throws voxlab::Error when the sizes disagree
+    // or a dimension/spacing is not positive.
+    Volume(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing,
+           std::vector<std::uint8_t> bytes, std::string name = "");
+
+    const std::string& name() const { return name_; }
+    glm::ivec3 dims() const { return dims_; }
+    VoxelType type() const { return type_; }
+    glm::dvec3 spacing() const { return spacing_; }
+    std::size_t voxelCount() const;
+    const std::vector<std::uint8_t>& bytes() const { return bytes_; }
+    const void* data() const { return bytes_.data(); }
+
+    // World-space size of the box: dims * spacing.
+    glm::dvec3 extent() const { return glm::dvec3(dims_) * spacing_; }
+    double minSpacing() const;
+
+    // The value of voxel (i,j,k) in the data's own units. No bounds check
+    // beyond an assert: callers clamp.
+    double value(int i, int j, int k) const;
+    double valueAt(std::size_t index) const;
+
+    // Smallest and largest voxel value (computed once, at construction).
+    double minValue() const { return min_; }
+    double maxValue() const { return max_; }
+
+    // Histogram over [minValue, maxValue].
+    Histogram histogram(int bins = 256) const;
+
+private:
+    std::string name_;
+    glm::ivec3 dims_{0};
+    VoxelType type_ = VoxelType::UInt8;
+    glm::dvec3 spacing_{1.0};
+    std::vector<std::uint8_t> bytes_;
+    double min_ = 0.0;
+    double max_ = 0.0;
+};
+
+// Loads a volume from a path or a phantom spec, choosing the loader by
+// extension (.nrrd/.nhdr, .fld, .dat) or the "phantom:" prefix. Throws
+// voxlab::Error with a one-line message naming the file and the problem.
+Volume loadVolume(const std::string& pathOrSpec);
+
+// Individual loaders (see framework/src/volume_io/).
+Volume loadNrrd(const std::string& path);
+Volume loadFld(const std::string& path);
+Volume loadDatRaw(const std::string& path);
+
+// Writes an attached, raw (or gzip) NRRD. Used by tests and tools.
+void saveNrrd(const Volume& volume, const std::string& path, bool gzip = false);
+
+// Built-in analytic phantoms, addressed as "phantom:NAME[:SIZE]" (SIZE is
+// the edge length in voxels, default 64). See phantoms.h for the formulas.
+Volume makePhantom(const std::string& spec);
+std::vector<std::string> phantomNames();
+
+}  // namespace voxlab

@@ -1,0 +1,109 @@
+// voxlab: camera set-up. See camera.h and the README for the conventions.
+#include "voxlab/camera.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "voxlab/error.h"
+
+namespace voxlab {
+
+const char* projectionName(Projection p) {
+    return p == Projection::Orthographic ? "orthographic" : "perspective";
+}
+
+Projection parseProjection(const std::string& name) {
+    if (name == "orthographic" || name == "ortho") return Projection::Orthographic;
+    if (name == "perspective" || name == "persp") return Projection::Perspective;
+    throw Error("unknown projection '" + name + "' (expected orthographic or perspective)");
+}
+
+namespace {
+
+struct AxisBasis {
+    const char* name;
+    glm::dvec3 forward, right, down;
+};
+
+// The axis-view table from the README: rays travel along `forward`; the
+// image's x axis grows along `right` and its y axis along `down`.
+constexpr AxisBasis kAxisViews[] = {
+    {"+z", {0, 0, 1}, {1, 0, 0}, {0, 1, 0}},
+    {"-z", {0, 0, -1}, {-1, 0, 0}, {0, 1, 0}},
+    {"+x", {1, 0, 0}, {0, 0, -1}, {0, 1, 0}},
+    {"-x", {-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+    {"+y", {0, 1, 0}, {-1, 0, 0}, {0, 0, 1}},
+    {"-y", {0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
+};
+
+const AxisBasis* findAxisView(const std::string& view) {
+    for (const AxisBasis& b : kAxisViews)
+        if (view == b.name) return &b;
+    return nullptr;
+}
+
+double radians(double degrees) { return degrees * (M_PI / 180.0); }
+
+}  // namespace
+
+bool isAxisView(const std::string& view) { return findAxisView(view) != nullptr; }
+
+Camera Camera::make(const CameraSpec& spec, glm::dvec3 extent, int width, int height) {
+    if (width <= 0 || height <= 0) throw Error("image size must be positive");
+    Camera cam;
+    cam.width = width;
+    cam.height = height;
+    cam.projection = spec.projection;
+    const glm::dvec3 centre = 0.5 * extent;
+    const double radius = 0.5 * glm::length(extent);
+    const double zoom = spec.zoom > 0.0 ? spec.zoom : 1.0;
+
+    if (!spec.view.empty()) {
+        const AxisBasis* b = findAxisView(spec.view);
+        if (!b) throw Error("unknown view '" + spec.view + "' (expected +x -x +y -y +z -z)");
+        cam.forward = b->forward;
+        cam.right = b->right;
+        cam.down = b->down;
+    } else {
+        // Orbit: azimuth turns about the y axis, elevation tilts towards
+        // looking down from -y. At (0,0) this is exactly the +z view.
+        const double az = radians(spec.azimuth), el = radians(spec.elevation);
+        cam.forward = glm::dvec3(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+        const glm::dvec3 up(std::sin(az) * std::sin(el), -std::cos(el), std::cos(az) * std::sin(el));
+        cam.right = glm::normalize(glm::cross(cam.forward, up));
+        cam.down = glm::normalize(glm::cross(cam.forward, cam.right));
+    }
+
+    if (cam.projection == Projection::Orthographic) {
+        // Fit the projected box (axis views) or the bounding sphere (orbits)
+        // into the image with one uniform scale, centred.
+        double w, h;
+        if (!spec.view.empty()) {
+            w = std::abs(glm::dot(extent, cam.right));
+            h = std::abs(glm::dot(extent, cam.down));
+        } else {
+            w = h = 2.0 * radius;
+        }
+        cam.pixelScale = std::max(w / width, h / height) / zoom;
+        cam.position = centre - cam.forward * (radius * 2.0);
+    } else {
+        const double dist = (spec.distance > 0.0 ? spec.distance : 2.6) * radius;
+        cam.position = centre - cam.forward * dist;
+        cam.pixelScale = std::tan(radians(spec.fov) * 0.5) / (0.5 * height) / zoom;
+    }
+    return cam;
+}
+
+void Camera::ray(double px, double py, glm::dvec3* origin, glm::dvec3* direction) const {
+    const double u = (px - 0.5 * width) * pixelScale;
+    const double v = (py - 0.5 * height) * pixelScale;
+    if (projection == Projection::Orthographic) {
+        *origin = position + u * right + v * down;
+        *direction = forward;
+    } else {
+        *origin = position;
+        *direction = glm::normalize(forward + u * right + v * down);
+    }
+}
+
+}  // namespace voxlab

@@ -32,7 +32,7 @@ struct CameraSpec {
     std::string view;
     double azimuth = 30.0;    // degrees
     double elevation = 20.0;  // degrees
-    double distance = 2.6;    // in bounding-sphere radii (perspective)
+    double distance = 4.0;    // in bounding-sphere radii (perspective; 4 fits the box at fov 30)
     double fov = 30.0;        // vertical field of view, degrees (perspective)
     double zoom = 1.0;        // >1 magnifies
     Projection projection = Projection::Perspective;

@@ -68,6 +68,12 @@ struct Scene {
 // the dataset search path: $VOXLAB_DATA_PATH (colon-separated) and the
 // project's datasets/ folder. Phantom specs are returned unchanged. Throws
 // voxlab::Error("NAME: no such file (searched: ...)") when nothing matches.
+// The project's datasets/ folder is $VOXLAB_ROOT/datasets when VOXLAB_ROOT is
+// set, else the one in the source tree this was built from.
 std::string resolveDataPath(const std::string& name, const std::string& baseDir = "");
+
+// The project's root folder (datasets/, shaders/): $VOXLAB_ROOT when set,
+// else the source tree this was built from.
+std::string projectRoot();
 
 }  // namespace voxlab

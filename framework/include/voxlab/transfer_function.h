@@ -28,6 +28,14 @@ struct ControlPoint {
 // value lo + i*(hi-lo)/(size-1). Reading it with linear interpolation
 // between entries reproduces the piecewise-linear function within
 // `maxError` (checked on the CPU when baked).
+//
+// On the GPU, upload the entries as a 1D texture of `size` texels with
+// GL_LINEAR filtering and GL_CLAMP_TO_EDGE, and read it at
+//     u = clamp((v - lo) / (hi - lo), 0, 1) * (size - 1) / size + 0.5 / size
+// so that value lo falls on the centre of texel 0 and hi on the centre of
+// texel size-1; lookup() below computes exactly that on the CPU.
+// A degenerate range (hi <= lo when baked) is stored as [lo, lo + 1] with
+// two equal entries, so the mapping above never divides by zero.
 struct TransferFunctionTable {
     double lo = 0.0;
     double hi = 1.0;
@@ -54,14 +62,22 @@ public:
     // Bakes a table over [lo, hi] whose linear interpolation stays within
     // `tolerance` of evaluate() everywhere in [lo, hi]: the size grows (by
     // powers of two, from 256 up to maxSize) until the worst error, found at
-    // the control points where the function bends, is small enough.
+    // the control points where the function bends, is small enough. If even
+    // maxSize is not enough, the maxSize table is returned and its maxError
+    // says how far off it is (a step, two points at one value, cannot be
+    // baked away: it costs at least half its jump, all of it on an entry).
     TransferFunctionTable bake(double lo, double hi, double tolerance = 0.5 / 255.0,
                                int maxSize = 16384) const;
 
     // JSON: an array of {"value": v, "color": [r,g,b], "alpha": a}, or an
-    // object {"points": [...]}. Errors name the offending entry and key, e.g.
-    // "transfer_function[2].color: expected an array of 3 numbers".
+    // object {"points": [...], "name": "...", "description": "..."}. Every
+    // point needs all three keys. Errors name the offending entry and key,
+    // e.g. "tf.json: points[2].color: expected an array of 3 numbers in 0..1".
     static TransferFunction fromJson(const nlohmann::json& j, const std::string& where);
+    // The same, for a function embedded under `key` in a larger document
+    // (a scene): errors read "where: key[2].color: ...".
+    static TransferFunction fromJson(const nlohmann::json& j, const std::string& where,
+                                     const std::string& key);
     static TransferFunction load(const std::string& path);
     nlohmann::json toJson() const;
 

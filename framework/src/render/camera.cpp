@@ -87,7 +87,7 @@ Camera Camera::make(const CameraSpec& spec, glm::dvec3 extent, int width, int he
         cam.pixelScale = std::max(w / width, h / height) / zoom;
         cam.position = centre - cam.forward * (radius * 2.0);
     } else {
-        const double dist = (spec.distance > 0.0 ? spec.distance : 2.6) * radius;
+        const double dist = (spec.distance > 0.0 ? spec.distance : 4.0) * radius;
         cam.position = centre - cam.forward * dist;
         cam.pixelScale = std::tan(radians(spec.fov) * 0.5) / (0.5 * height) / zoom;
     }

@@ -1,0 +1,28 @@
+// voxlab CLI: the subcommands. Each returns the process exit code and
+// throws voxlab::Error for anything the user should read as one line.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "args.h"
+#include "voxlab/scene.h"
+
+namespace voxlab::cli {
+
+int renderCommand(int argc, char** argv);
+int infoCommand(int argc, char** argv);
+int listCommand(int argc, char** argv);
+int viewCommand(int argc, char** argv);
+
+// Options that describe a scene, shared by `render` and `view`.
+std::vector<OptionSpec> sceneOptions();
+// Builds a scene from `base` when given, else from the scene file named by
+// the first positional argument, then applies the flags on top.
+Scene sceneFromArgs(const Args& args, const std::string& command, const Scene* base = nullptr);
+
+// The scene that `voxlab render` and the viewer fall back to.
+std::string defaultScenePath();
+
+}  // namespace voxlab::cli

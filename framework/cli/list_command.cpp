@@ -1,0 +1,26 @@
+// voxlab list: the registered renderers and their declared parameters.
+#include <cstdio>
+#include <iostream>
+
+#include "commands.h"
+#include "voxlab/renderer.h"
+
+namespace voxlab::cli {
+
+int listCommand(int argc, char** argv) {
+    const std::vector<OptionSpec> specs = {{"help", "", "show this help"}};
+    const Args args(specs, argc, argv, 2, "list");
+    if (args.has("help")) {
+        std::cout << "usage: voxlab list\n\nNames every renderer with a one-line description and its parameters.\n";
+        return 0;
+    }
+    for (const auto& r : rendererRegistry().all()) {
+        std::printf("%-10s %s\n", r->id().c_str(), r->description().c_str());
+        for (const ParameterSpec& p : r->parameters())
+            std::printf("  %-12s %s in [%g, %g], default %g: %s\n", p.name.c_str(), parameterTypeName(p.type),
+                        p.minValue, p.maxValue, p.defaultValue, p.description.c_str());
+    }
+    return 0;
+}
+
+}  // namespace voxlab::cli

@@ -1,0 +1,55 @@
+// voxlab: the single entry point. `voxlab COMMAND [options]`.
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <new>
+
+#include "commands.h"
+#include "voxlab/error.h"
+
+namespace {
+
+void usage(std::ostream& out) {
+    out << "usage: voxlab COMMAND [options]\n\n"
+           "commands:\n"
+           "  view [DATASET|SCENE]   open the interactive viewer (default when a display is present)\n"
+           "  render [SCENE]         render one image headless to PNG\n"
+           "  info DATASET           dimensions, type, spacing, value range and histogram of a volume\n"
+           "  list                   the renderers and their parameters\n"
+           "  help                   this text\n\n"
+           "Every command takes --help. Datasets are files (.nrrd .nhdr .fld .dat) or phantoms such as\n"
+           "phantom:marschner-lobb:64; bare names are also looked up in the project's datasets/ folder.\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    using namespace voxlab::cli;
+    const std::string command = argc > 1 ? argv[1] : "";
+    try {
+        if (command.empty()) {
+            if (std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY")) return viewCommand(argc, argv);
+            usage(std::cout);
+            return 0;
+        }
+        if (command == "render") return renderCommand(argc, argv);
+        if (command == "info") return infoCommand(argc, argv);
+        if (command == "list") return listCommand(argc, argv);
+        if (command == "view") return viewCommand(argc, argv);
+        if (command == "help" || command == "--help" || command == "-h") {
+            usage(std::cout);
+            return 0;
+        }
+        std::cerr << "voxlab: unknown command '" << command << "' (try voxlab help)\n";
+        return 2;
+    } catch (const voxlab::Error& e) {
+        std::cerr << "voxlab: " << e.what() << "\n";
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "voxlab: out of memory\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "voxlab: internal error: " << e.what() << "\n";
+        return 1;
+    }
+}

@@ -1,0 +1,60 @@
+// voxlab view: the interactive viewer on a dataset or scene.
+#include <iostream>
+
+#include "commands.h"
+#include "voxlab/error.h"
+#include "voxlab/volume.h"
+#ifdef VOXLAB_HAVE_VIEWER
+#include "voxlab/viewer.h"
+#endif
+
+namespace voxlab::cli {
+
+int viewCommand(int argc, char** argv) {
+    std::vector<OptionSpec> specs = sceneOptions();
+    specs.push_back({"implementation", "DIR", "stage shaders from DIR instead of reference/"});
+    specs.push_back({"screenshot", "PNG", "render a few frames, save the window to PNG and exit"});
+    specs.push_back({"frames", "N", "frames to render before --screenshot (default 3)"});
+    specs.push_back({"window-size", "WxH", "window size (default 1280x800)"});
+    specs.push_back({"help", "", "show this help"});
+    const int first = (argc > 1 && std::string(argv[1]) == "view") ? 2 : 1;
+    const Args args(specs, argc, argv, first, "view");
+    if (args.has("help")) {
+        std::cout << "usage: voxlab view [DATASET|SCENE.json] [options]\n\n"
+                     "Opens the interactive viewer. With no argument it shows the default scene.\n\n"
+                  << formatOptions(specs);
+        return 0;
+    }
+#ifdef VOXLAB_HAVE_VIEWER
+    // With no argument the viewer opens the default scene; a dataset given
+    // as the argument replaces the default scene's dataset (and its
+    // dataset-specific window and transfer function).
+    const auto& pos = args.positionals();
+    const bool sceneFile = !pos.empty() && pos[0].size() > 5 && pos[0].substr(pos[0].size() - 5) == ".json";
+    std::optional<Scene> base;
+    if (!sceneFile && !args.has("dataset")) {
+        base = Scene::load(defaultScenePath());
+        if (!pos.empty()) {
+            base->dataset = resolveDataPath(pos[0]);
+            base->window.reset();
+            base->transferFunction.reset();
+        }
+    }
+    const Scene scene = sceneFromArgs(args, "view", base ? &*base : nullptr);
+    ViewerOptions options;
+    options.implementationRoot = args.get("implementation").value_or("");
+    options.screenshot = args.get("screenshot").value_or("");
+    options.frames = args.get("frames") ? parseInt(*args.get("frames"), "--frames") : 3;
+    if (auto ws = args.get("window-size")) {
+        const std::size_t x = ws->find('x');
+        if (x == std::string::npos) throw Error("option --window-size: expected WxH");
+        options.width = parseInt(ws->substr(0, x), "--window-size");
+        options.height = parseInt(ws->substr(x + 1), "--window-size");
+    }
+    return runViewer(scene, options);
+#else
+    throw Error("view: this build has no viewer (configured with VOXLAB_WITH_VIEWER=OFF)");
+#endif
+}
+
+}  // namespace voxlab::cli

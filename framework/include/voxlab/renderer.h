@@ -1,0 +1,75 @@
+// voxlab: the renderer plug-in interface.
+//
+// A renderer is a small class that names itself, declares its parameters and
+// points at its GLSL entry shader; the RenderEngine does the rest (textures,
+// camera uniforms, framebuffer). The entry shader (shaders/renderers/ID.frag)
+// includes the framework's GLSL libraries and the stage's implementation
+// (e.g. "mip/mip.glsl"), which is looked up first in the implementation root:
+// reference/ for the reference solution, or a student's submission folder.
+//
+// Renderers are registered explicitly, in one list (renderer_registry.cpp),
+// so no linker can drop one and the order in `voxlab list` is deliberate.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "voxlab/scene.h"
+
+namespace voxlab {
+
+class ShaderProgram;
+
+enum class ParameterType { Float, Int, Bool };
+
+// One declared parameter. The command line (--param NAME=VALUE), scene files
+// ("parameters": {...}) and the viewer's panels all read these.
+struct ParameterSpec {
+    std::string name;
+    ParameterType type = ParameterType::Float;
+    double minValue = 0.0;
+    double maxValue = 1.0;
+    double defaultValue = 0.0;
+    std::string description;
+};
+
+const char* parameterTypeName(ParameterType t);
+
+class Renderer {
+public:
+    virtual ~Renderer() = default;
+    virtual std::string id() const = 0;
+    virtual std::string description() const = 0;
+    virtual std::vector<ParameterSpec> parameters() const { return {}; }
+    // The entry fragment shader, found on the shader search path.
+    virtual std::string fragmentShader() const { return "renderers/" + id() + ".frag"; }
+    // Sets the renderer's own uniforms. The default sets each parameter as
+    // uniform "u_NAME" (float for Float, int for Int and Bool).
+    virtual void setUniforms(const ShaderProgram& program, const ParameterValues& values) const;
+
+    // Checks `given` against the declared parameters (unknown name, out of
+    // range, not an integer, not a bool) and fills in defaults. Errors name
+    // the renderer and parameter: "mip: parameter 'offset' is not declared".
+    ParameterValues resolveParameters(const ParameterValues& given) const;
+};
+
+class RendererRegistry {
+public:
+    template <class T>
+    void add() {
+        renderers_.push_back(std::make_unique<T>());
+    }
+    const Renderer* find(const std::string& id) const;
+    // Throws voxlab::Error("unknown renderer 'x' (available: slicer, mip)").
+    const Renderer& get(const std::string& id) const;
+    const std::vector<std::unique_ptr<Renderer>>& all() const { return renderers_; }
+
+private:
+    std::vector<std::unique_ptr<Renderer>> renderers_;
+};
+
+// The built-in renderers, in teaching order.
+const RendererRegistry& rendererRegistry();
+
+}  // namespace voxlab

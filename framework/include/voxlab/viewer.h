@@ -1,0 +1,23 @@
+// voxlab: the interactive viewer (GLFW + Dear ImGui).
+#pragma once
+
+#include <string>
+
+#include "voxlab/scene.h"
+
+namespace voxlab {
+
+struct ViewerOptions {
+    std::string implementationRoot;  // empty: reference/
+    // Scripted use (tests, README screenshots): render `frames` frames, save
+    // a screenshot of the whole window to `screenshot`, and close.
+    std::string screenshot;
+    int frames = 0;
+    int width = 1280;
+    int height = 800;
+};
+
+// Opens the window on `scene` and runs until it is closed. Returns the exit code.
+int runViewer(const Scene& scene, const ViewerOptions& options);
+
+}  // namespace voxlab

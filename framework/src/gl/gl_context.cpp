@@ -1,0 +1,61 @@
+// voxlab: the parts of GlContext shared by every backend.
+#include "voxlab/gl_context.h"
+
+#include <cstdlib>
+
+#include "voxlab/error.h"
+#include "voxlab_gl.h"
+
+namespace voxlab {
+
+void GlContext::loadFunctions(const char* kind) {
+    kind_ = kind;
+    // voxlabLoadGL accepts any get-proc-address function; each backend
+    // hands us its own through this trampoline.
+    static thread_local const GlContext* current = nullptr;
+    current = this;
+    const int missing = voxlabLoadGL([](const char* name) -> VoxlabGLProc {
+        return reinterpret_cast<VoxlabGLProc>(current->getProcAddress(name));
+    });
+    if (missing > 0)
+        throw Error(std::string(kind) + ": OpenGL 3.3 core is not available (" +
+                    std::to_string(missing) + " functions missing, first: " + voxlabGLMissing(0) + ")");
+    GLint major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major < 3 || (major == 3 && minor < 3))
+        throw Error(std::string(kind) + ": OpenGL " + std::to_string(major) + "." +
+                    std::to_string(minor) + " found, 3.3 core or newer is needed");
+}
+
+std::string GlContext::description() const {
+    auto str = [](GLenum name) {
+        const GLubyte* s = glGetString(name);
+        return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
+    };
+    return kind_ + ": " + str(GL_RENDERER) + ", OpenGL " + str(GL_VERSION);
+}
+
+HeadlessBackend parseHeadlessBackend(const std::string& name) {
+    if (name.empty() || name == "auto") return HeadlessBackend::Auto;
+    if (name == "osmesa") return HeadlessBackend::OSMesa;
+    if (name == "egl") return HeadlessBackend::EGL;
+    throw Error("unknown GL backend '" + name + "' (expected auto, osmesa or egl)");
+}
+
+std::unique_ptr<GlContext> createHeadlessContext(HeadlessBackend backend) {
+    if (backend == HeadlessBackend::Auto) {
+        const char* env = std::getenv("VOXLAB_GL");
+        backend = parseHeadlessBackend(env ? env : "");
+        if (backend == HeadlessBackend::Auto) backend = HeadlessBackend::OSMesa;
+    }
+    return backend == HeadlessBackend::EGL ? createEglContext() : createOsMesaContext();
+}
+
+#ifndef VOXLAB_HAVE_EGL
+std::unique_ptr<GlContext> createEglContext() {
+    throw Error("EGL: this build of voxlab has no EGL support (libEGL was not found at configure time)");
+}
+#endif
+
+}  // namespace voxlab

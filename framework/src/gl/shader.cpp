@@ -1,0 +1,223 @@
+// voxlab: GLSL preprocessing (#include with a search path), compilation and
+// error mapping. See shader.h.
+#include "voxlab/shader.h"
+
+#include <algorithm>
+#include <fstream>
+#include <cstring>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <sys/stat.h>
+
+#include "voxlab/scene.h"
+#include "voxlab_gl.h"
+
+namespace voxlab {
+namespace {
+
+bool isFile(const std::string& path) {
+    struct stat st {};
+    return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+std::string readText(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw ShaderError(path + ": cannot read shader file");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// Shows paths relative to the project root when they are inside it.
+std::string displayPath(const std::string& path) {
+    const std::string root = projectRoot() + "/";
+    return path.compare(0, root.size(), root) == 0 ? path.substr(root.size()) : path;
+}
+
+// Parses `#include "name"`; returns false for any other line.
+bool parseInclude(const std::string& line, std::string* name) {
+    static const std::regex re(R"(^\s*#\s*include\s*"([^"]+)\"\s*(//.*)?$)");
+    std::smatch m;
+    if (!std::regex_match(line, m, re)) return false;
+    *name = m[1];
+    return true;
+}
+
+struct Preprocessor {
+    const ShaderLibrary& lib;
+    PreprocessedShader out;
+    std::set<std::string> included;
+    std::vector<std::string> stack;
+
+    void addFile(const std::string& path, bool isEntry) {
+        if (included.count(path)) return;  // each library once per program
+        if (std::find(stack.begin(), stack.end(), path) != stack.end())
+            throw ShaderError(displayPath(path) + ": circular #include");
+        included.insert(path);
+        stack.push_back(path);
+        const int fileId = int(out.files.size());
+        out.files.push_back(displayPath(path));
+
+        std::istringstream in(readText(path));
+        std::string line;
+        int lineNo = 0;
+        if (!isEntry) out.text += "#line 1 " + std::to_string(fileId) + "\n";
+        while (std::getline(in, line)) {
+            ++lineNo;
+            std::string name;
+            if (lineNo == 1 && isEntry) {
+                // `#version` must come first; everything after it is
+                // numbered from line 2 of file 0.
+                out.text += line + "\n#line 2 0\n";
+                continue;
+            }
+            if (parseInclude(line, &name)) {
+                addFile(lib.resolve(name, displayPath(path) + ":" + std::to_string(lineNo)), false);
+                out.text += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(fileId) + "\n";
+            } else {
+                out.text += line + "\n";
+            }
+        }
+        stack.pop_back();
+    }
+};
+
+unsigned compileStage(GLenum stage, const PreprocessedShader& src) {
+    const GLuint shader = glCreateShader(stage);
+    const char* text = src.text.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
+        std::string log(std::max(len, 1), '\0');
+        glGetShaderInfoLog(shader, len, nullptr, &log[0]);
+        glDeleteShader(shader);
+        log.resize(std::strlen(log.c_str()));
+        throw ShaderError(src.mapLog(log));
+    }
+    return shader;
+}
+
+}  // namespace
+
+std::string PreprocessedShader::mapLog(const std::string& log) const {
+    static const std::regex mesa(R"(^(\d+):(\d+)\((\d+)\):\s*(.*)$)");
+    static const std::regex nvidia(R"(^(\d+)\((\d+)\)\s*:\s*(.*)$)");
+    std::istringstream in(log);
+    std::string line, result;
+    while (std::getline(in, line)) {
+        if (line.empty()) continue;
+        std::smatch m;
+        auto fileName = [&](const std::string& id) {
+            const size_t i = std::stoul(id);
+            return i < files.size() ? files[i] : "<source " + id + ">";
+        };
+        if (std::regex_match(line, m, mesa))
+            line = fileName(m[1]) + ":" + std::string(m[2]) + ":" + std::string(m[3]) + ": " + std::string(m[4]);
+        else if (std::regex_match(line, m, nvidia))
+            line = fileName(m[1]) + ":" + std::string(m[2]) + ": " + std::string(m[3]);
+        result += (result.empty() ? "" : "\n") + line;
+    }
+    return result.empty() ? "shader compilation failed with an empty log" : result;
+}
+
+ShaderLibrary::ShaderLibrary(std::vector<std::string> searchPath) : searchPath_(std::move(searchPath)) {}
+
+ShaderLibrary ShaderLibrary::forImplementation(const std::string& implementationRoot) {
+    return ShaderLibrary({implementationRoot, projectRoot() + "/shaders"});
+}
+
+std::string ShaderLibrary::resolve(const std::string& name, const std::string& includedFrom) const {
+    for (const std::string& dir : searchPath_) {
+        const std::string path = dir + "/" + name;
+        if (isFile(path)) return path;
+    }
+    std::string searched;
+    for (const std::string& dir : searchPath_) searched += (searched.empty() ? "" : ", ") + displayPath(dir);
+    throw ShaderError((includedFrom.empty() ? "" : includedFrom + ": ") + "shader '" + name +
+                      "' not found (searched: " + searched + ")");
+}
+
+PreprocessedShader ShaderLibrary::preprocess(const std::string& name) const {
+    Preprocessor p{*this, {}, {}, {}};
+    p.addFile(resolve(name), true);
+    return p.out;
+}
+
+ShaderProgram::ShaderProgram(const ShaderLibrary& library, const std::string& vertexName,
+                             const std::string& fragmentName) {
+    const PreprocessedShader vs = library.preprocess(vertexName);
+    const PreprocessedShader fs = library.preprocess(fragmentName);
+    files_ = vs.files;
+    files_.insert(files_.end(), fs.files.begin(), fs.files.end());
+    const GLuint v = compileStage(GL_VERTEX_SHADER, vs);
+    GLuint f = 0;
+    try {
+        f = compileStage(GL_FRAGMENT_SHADER, fs);
+    } catch (...) {
+        glDeleteShader(v);
+        throw;
+    }
+    program_ = glCreateProgram();
+    glAttachShader(program_, v);
+    glAttachShader(program_, f);
+    glLinkProgram(program_);
+    glDeleteShader(v);
+    glDeleteShader(f);
+    GLint ok = 0;
+    glGetProgramiv(program_, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetProgramiv(program_, GL_INFO_LOG_LENGTH, &len);
+        std::string log(std::max(len, 1), '\0');
+        glGetProgramInfoLog(program_, len, nullptr, &log[0]);
+        log.resize(std::strlen(log.c_str()));
+        glDeleteProgram(program_);
+        program_ = 0;
+        throw ShaderError(fragmentName + ": link error: " + fs.mapLog(log));
+    }
+}
+
+ShaderProgram::~ShaderProgram() {
+    if (program_) glDeleteProgram(program_);
+}
+
+void ShaderProgram::use() const { glUseProgram(program_); }
+
+int ShaderProgram::location(const char* name) const {
+    auto it = locations_.find(name);
+    if (it != locations_.end()) return it->second;
+    const int loc = glGetUniformLocation(program_, name);
+    locations_.emplace(name, loc);
+    return loc;
+}
+
+void ShaderProgram::set(const char* name, int v) const { glUniform1i(location(name), v); }
+void ShaderProgram::set(const char* name, float v) const { glUniform1f(location(name), v); }
+void ShaderProgram::set(const char* name, glm::vec2 v) const { glUniform2f(location(name), v.x, v.y); }
+void ShaderProgram::set(const char* name, glm::vec3 v) const { glUniform3f(location(name), v.x, v.y, v.z); }
+void ShaderProgram::set(const char* name, glm::vec4 v) const {
+    glUniform4f(location(name), v.x, v.y, v.z, v.w);
+}
+void ShaderProgram::set(const char* name, glm::ivec3 v) const { glUniform3i(location(name), v.x, v.y, v.z); }
+
+void checkGlError(const char* where) {
+    const GLenum err = glGetError();
+    if (err == GL_NO_ERROR) return;
+    const char* name = "unknown";
+    switch (err) {
+        case GL_INVALID_ENUM: name = "GL_INVALID_ENUM"; break;
+        case GL_INVALID_VALUE: name = "GL_INVALID_VALUE"; break;
+        case GL_INVALID_OPERATION: name = "GL_INVALID_OPERATION"; break;
+        case GL_INVALID_FRAMEBUFFER_OPERATION: name = "GL_INVALID_FRAMEBUFFER_OPERATION"; break;
+        case GL_OUT_OF_MEMORY: name = "GL_OUT_OF_MEMORY"; break;
+    }
+    while (glGetError() != GL_NO_ERROR) {}
+    throw Error(std::string("OpenGL error ") + name + " after " + where);
+}
+
+}  // namespace voxlab

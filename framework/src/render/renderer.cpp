@@ -1,0 +1,72 @@
+// voxlab: parameter checking shared by every renderer, and the registry.
+#include "voxlab/renderer.h"
+
+#include <cmath>
+
+#include "voxlab/error.h"
+#include "voxlab/shader.h"
+
+namespace voxlab {
+
+const char* parameterTypeName(ParameterType t) {
+    switch (t) {
+        case ParameterType::Float: return "float";
+        case ParameterType::Int: return "int";
+        case ParameterType::Bool: return "bool";
+    }
+    return "?";
+}
+
+void Renderer::setUniforms(const ShaderProgram& program, const ParameterValues& values) const {
+    for (const ParameterSpec& p : parameters()) {
+        const std::string name = "u_" + p.name;
+        const double v = values.at(p.name);
+        if (p.type == ParameterType::Float)
+            program.set(name.c_str(), float(v));
+        else
+            program.set(name.c_str(), int(v));
+    }
+}
+
+ParameterValues Renderer::resolveParameters(const ParameterValues& given) const {
+    const std::vector<ParameterSpec> specs = parameters();
+    ParameterValues out;
+    for (const ParameterSpec& p : specs) out[p.name] = p.defaultValue;
+    for (const auto& [name, value] : given) {
+        const ParameterSpec* spec = nullptr;
+        for (const ParameterSpec& p : specs)
+            if (p.name == name) spec = &p;
+        if (!spec) {
+            std::string known;
+            for (const ParameterSpec& p : specs) known += (known.empty() ? "" : ", ") + p.name;
+            throw Error(id() + ": parameter '" + name + "' is not declared (" +
+                        (known.empty() ? "it has none" : "it has: " + known) + ")");
+        }
+        const std::string where = id() + ": parameter '" + name + "'";
+        if (!std::isfinite(value)) throw Error(where + " must be a finite number");
+        if (spec->type == ParameterType::Bool && value != 0.0 && value != 1.0)
+            throw Error(where + " is a bool (0/1, true/false)");
+        if (spec->type == ParameterType::Int && value != std::floor(value))
+            throw Error(where + " must be an integer");
+        if (value < spec->minValue || value > spec->maxValue)
+            throw Error(where + " = " + std::to_string(value) + " is outside [" +
+                        std::to_string(spec->minValue) + ", " + std::to_string(spec->maxValue) + "]");
+        out[name] = value;
+    }
+    return out;
+}
+
+const Renderer* RendererRegistry::find(const std::string& id) const {
+    for (const auto& r : renderers_)
+        if (r->id() == id) return r.get();
+    return nullptr;
+}
+
+const Renderer& RendererRegistry::get(const std::string& id) const {
+    if (const Renderer* r = find(id)) return *r;
+    std::string names;
+    for (const auto& r : renderers_) names += (names.empty() ? "" : ", ") + r->id();
+    throw Error("unknown renderer '" + id + "' (available: " + names + ")");
+}
+
+}  // namespace voxlab

@@ -1,0 +1,18 @@
+// voxlab: the explicit list of built-in renderers, in teaching order. A new
+// renderer is added here, in one line; nothing registers itself behind the
+// linker's back.
+#include "voxlab/renderers.h"
+
+namespace voxlab {
+
+const RendererRegistry& rendererRegistry() {
+    static const RendererRegistry registry = [] {
+        RendererRegistry r;
+        r.add<SlicerRenderer>();
+        r.add<MipRenderer>();
+        return r;
+    }();
+    return registry;
+}
+
+}  // namespace voxlab

@@ -1,0 +1,19 @@
+// voxlab renderer "slicer": one plane through the volume, perpendicular to
+// the view, shown in grey (window) or through the transfer function.
+#include "voxlab/renderers.h"
+
+namespace voxlab {
+
+std::string SlicerRenderer::id() const { return "slicer"; }
+
+std::string SlicerRenderer::description() const {
+    return "a plane through the volume centre, perpendicular to the view (moved by 'offset')";
+}
+
+std::vector<ParameterSpec> SlicerRenderer::parameters() const {
+    return {{"offset", ParameterType::Float, -4096.0, 4096.0, 0.0,
+             "distance of the plane from the volume centre along the view direction, "
+             "in units of the smallest voxel spacing"}};
+}
+
+}  // namespace voxlab

@@ -1,0 +1,49 @@
+// voxlab: GLFW windows (see window.h).
+#define GLFW_INCLUDE_NONE
+#include "voxlab/window.h"
+
+#include <GLFW/glfw3.h>
+
+#include <string>
+
+#include "voxlab/error.h"
+
+namespace voxlab {
+namespace {
+
+std::string lastGlfwError() {
+    const char* text = nullptr;
+    glfwGetError(&text);
+    return text ? text : "unknown GLFW error";
+}
+
+}  // namespace
+
+GlfwWindow::GlfwWindow(int width, int height, const std::string& title, bool visible) {
+    if (!glfwInit()) throw Error("cannot open a window: " + lastGlfwError());
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);  // required on macOS
+    glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
+    glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);       // high-DPI screens
+    window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+    if (!window_) {
+        const std::string why = lastGlfwError();
+        glfwTerminate();
+        throw Error("cannot open an OpenGL 3.3 core window: " + why);
+    }
+    makeCurrent();
+    loadFunctions("GLFW");
+}
+
+GlfwWindow::~GlfwWindow() {
+    if (window_) glfwDestroyWindow(window_);
+    glfwTerminate();
+}
+
+void GlfwWindow::makeCurrent() { glfwMakeContextCurrent(window_); }
+
+GlProc GlfwWindow::getProcAddress(const char* name) const { return glfwGetProcAddress(name); }
+
+}  // namespace voxlab

@@ -1,0 +1,18 @@
+#version 330 core
+// Renderer "slicer": one plane through the volume, perpendicular to the
+// view. The stage itself, slice_plane_hit(), is in slicer/slicer.glsl.
+#include "voxlab/ray.glsl"
+#include "voxlab/classify.glsl"
+#include "slicer/slicer.glsl"
+
+out vec4 frag_color;
+
+void main() {
+    Ray ray = camera_ray();
+    vec3 p;
+    if (!slice_plane_hit(ray, p) || !inside_volume(p)) {
+        frag_color = vec4(u_background, 1.0);
+        return;
+    }
+    frag_color = vec4(display_value(sample_volume(p)), 1.0);
+}

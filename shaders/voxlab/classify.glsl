@@ -1,0 +1,45 @@
+// voxlab GLSL library: turning data values into colours.
+//
+//  - Grey: a linear window [lo, hi] in data units maps lo to black and hi to
+//    white, clamped.
+//  - Colour: the scene's 1D transfer function, a table over the data range
+//    [u_tf_range.x, u_tf_range.y] read with linear interpolation. Entry i of
+//    the u_tf_size entries holds the value lo + i*(hi-lo)/(size-1), so the
+//    texture coordinate is f*(size-1)/size + 0.5/size for f = (v-lo)/(hi-lo).
+//  - Opacity in the table is per unit length (the smallest spacing); a
+//    sample that stands for u_step_units of that length has opacity
+//    1 - (1 - alpha)^u_step_units.
+#ifndef VOXLAB_CLASSIFY_GLSL
+#define VOXLAB_CLASSIFY_GLSL
+
+uniform vec2 u_window;
+uniform int u_has_tf;
+uniform sampler1D u_tf;
+uniform vec2 u_tf_range;
+uniform float u_tf_size;
+uniform vec3 u_background;
+
+float apply_window(float value) {
+    return clamp((value - u_window.x) / (u_window.y - u_window.x), 0.0, 1.0);
+}
+
+// Colour (rgb) and opacity per unit length (a) of a data value.
+vec4 transfer_function(float value) {
+    float f = clamp((value - u_tf_range.x) / max(u_tf_range.y - u_tf_range.x, 1e-30), 0.0, 1.0);
+    return texture(u_tf, f * (u_tf_size - 1.0) / u_tf_size + 0.5 / u_tf_size);
+}
+
+float opacity_correction(float alpha, float step_units) {
+    return 1.0 - pow(1.0 - clamp(alpha, 0.0, 1.0), step_units);
+}
+
+// How a single value is shown by the projection renderers (slicer, MIP):
+// grey through the window, or, when the scene has a transfer function, its
+// colour with its opacity over the background.
+vec3 display_value(float value) {
+    if (u_has_tf == 0) return vec3(apply_window(value));
+    vec4 c = transfer_function(value);
+    return c.rgb * c.a + u_background * (1.0 - c.a);
+}
+
+#endif

@@ -3,9 +3,9 @@
 //  - Grey: a linear window [lo, hi] in data units maps lo to black and hi to
 //    white, clamped.
 //  - Colour: the scene's 1D transfer function, a table over the data range
-//    [u_tf_range.x, u_tf_range.y] read with linear interpolation. Entry i of
-//    the u_tf_size entries holds the value lo + i*(hi-lo)/(size-1), so the
-//    texture coordinate is f*(size-1)/size + 0.5/size for f = (v-lo)/(hi-lo).
+//    [lo, hi] = u_tf_range. Entry i of the u_tf_size entries holds the
+//    function at lo + i*(hi-lo)/(size-1); entries are stored row by row in a
+//    2D texture (4096 per row) and interpolated here, in float.
 //  - Opacity in the table is per unit length (the smallest spacing); a
 //    sample that stands for u_step_units of that length has opacity
 //    1 - (1 - alpha)^u_step_units.
@@ -14,19 +14,26 @@
 
 uniform vec2 u_window;
 uniform int u_has_tf;
-uniform sampler1D u_tf;
+uniform sampler2D u_tf;
 uniform vec2 u_tf_range;
-uniform float u_tf_size;
+uniform int u_tf_size;
 uniform vec3 u_background;
 
 float apply_window(float value) {
     return clamp((value - u_window.x) / (u_window.y - u_window.x), 0.0, 1.0);
 }
 
+vec4 tf_entry(int i) {
+    const int row_length = 4096;
+    return texelFetch(u_tf, ivec2(i % row_length, i / row_length), 0);
+}
+
 // Colour (rgb) and opacity per unit length (a) of a data value.
 vec4 transfer_function(float value) {
     float f = clamp((value - u_tf_range.x) / max(u_tf_range.y - u_tf_range.x, 1e-30), 0.0, 1.0);
-    return texture(u_tf, f * (u_tf_size - 1.0) / u_tf_size + 0.5 / u_tf_size);
+    float x = f * float(u_tf_size - 1);
+    int i = min(int(x), max(u_tf_size - 2, 0));
+    return mix(tf_entry(i), tf_entry(min(i + 1, u_tf_size - 1)), x - float(i));
 }
 
 float opacity_correction(float alpha, float step_units) {

@@ -29,13 +29,18 @@ struct ControlPoint {
 // between entries reproduces the piecewise-linear function within
 // `maxError` (checked on the CPU when baked).
 //
-// On the GPU, upload the entries as a 1D texture of `size` texels with
-// GL_LINEAR filtering and GL_CLAMP_TO_EDGE, and read it at
-//     u = clamp((v - lo) / (hi - lo), 0, 1) * (size - 1) / size + 0.5 / size
-// so that value lo falls on the centre of texel 0 and hi on the centre of
-// texel size-1; lookup() below computes exactly that on the CPU.
+// On the GPU the entries are stored row by row in a 2D texture
+// kTransferFunctionRowLength texels wide (a 1D texture cannot hold the 65536
+// entries a sharp ramp in 16-bit data needs), and the shader interpolates
+// by hand, in float, at x = clamp((v - lo) / (hi - lo), 0, 1) * (size - 1):
+// entries floor(x) and floor(x) + 1 mixed by fract(x). Value lo falls on
+// entry 0 and hi on entry size-1; lookup() below computes exactly that on
+// the CPU. (Hardware filtering would be cheaper, but GPUs blend with as few
+// as 8 bits of weight, which alone can cost 1/512 at a steep ramp.)
 // A degenerate range (hi <= lo when baked) is stored as [lo, lo + 1] with
 // two equal entries, so the mapping above never divides by zero.
+constexpr int kTransferFunctionRowLength = 4096;
+
 struct TransferFunctionTable {
     double lo = 0.0;
     double hi = 1.0;
@@ -67,7 +72,7 @@ public:
     // says how far off it is (a step, two points at one value, cannot be
     // baked away: it costs at least half its jump, all of it on an entry).
     TransferFunctionTable bake(double lo, double hi, double tolerance = 0.5 / 255.0,
-                               int maxSize = 16384) const;
+                               int maxSize = 65536) const;
 
     // JSON: an array of {"value": v, "color": [r,g,b], "alpha": a}, or an
     // object {"points": [...], "name": "...", "description": "..."}. Every

@@ -1,6 +1,8 @@
 // voxlab: the render engine (see render_engine.h).
 #include "voxlab/render_engine.h"
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "voxlab/error.h"
@@ -81,11 +83,16 @@ void RenderEngine::uploadTransferFunction(const TransferFunction& tf) {
     // The table spans the data's value range; bake() sizes it so that linear
     // interpolation stays within half a grey level of the exact function.
     tfTable_ = tf.bake(volume_->minValue(), volume_->maxValue());
-    glBindTexture(GL_TEXTURE_1D, tfTexture_);
-    glTexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, tfTable_.size, 0, GL_RGBA, GL_FLOAT, tfTable_.rgba.data());
-    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    // Row-major in a 2D texture (see transfer_function.h); the shader
+    // fetches and interpolates entries itself, so no filtering here.
+    const int width = std::min(tfTable_.size, kTransferFunctionRowLength);
+    const int rows = (tfTable_.size + width - 1) / width;
+    std::vector<glm::vec4> texels(std::size_t(width) * rows, tfTable_.rgba.back());
+    std::copy(tfTable_.rgba.begin(), tfTable_.rgba.end(), texels.begin());
+    glBindTexture(GL_TEXTURE_2D, tfTexture_);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, rows, 0, GL_RGBA, GL_FLOAT, texels.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     checkGlError("uploading the transfer function");
     tfKey_ = key;
 }
@@ -158,10 +165,10 @@ void RenderEngine::draw(const Scene& scene, const Renderer& renderer, const Para
     if (scene.transferFunction) {
         uploadTransferFunction(*scene.transferFunction);
         prog.set("u_tf_range", glm::vec2(float(tfTable_.lo), float(tfTable_.hi)));
-        prog.set("u_tf_size", float(tfTable_.size));
+        prog.set("u_tf_size", tfTable_.size);
     }
     glActiveTexture(GL_TEXTURE0 + kTransferFunctionUnit);
-    glBindTexture(GL_TEXTURE_1D, tfTexture_);
+    glBindTexture(GL_TEXTURE_2D, tfTexture_);
     prog.set("u_tf", kTransferFunctionUnit);
 
     renderer.setUniforms(prog, values);

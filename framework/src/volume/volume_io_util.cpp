@@ -1,0 +1,287 @@
+// voxlab (internal): file, gzip, byte-order and number helpers for loaders.
+#include "volume_io_util.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <climits>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <system_error>
+
+#include <zlib.h>
+
+namespace fs = std::filesystem;
+
+namespace voxlab::detail {
+
+void fail(const std::string& path, const std::string& problem) {
+    throw Error(path + ": " + problem);
+}
+
+// ---- files -----------------------------------------------------------------
+
+std::uint64_t fileSize(const std::string& path) {
+    std::error_code ec;
+    fs::file_status st = fs::status(path, ec);
+    if (ec || !fs::exists(st)) fail(path, "no such file");
+    if (fs::is_directory(st)) fail(path, "is a directory, not a file");
+    std::uintmax_t size = fs::file_size(path, ec);
+    if (ec) fail(path, "cannot read file (" + ec.message() + ")");
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) fail(path, "cannot open file for reading");
+    return size;
+}
+
+std::string readPrefix(const std::string& path, std::size_t maxBytes) {
+    std::uint64_t size = fileSize(path);
+    std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(size, maxBytes));
+    std::string text(want, '\0');
+    std::ifstream in(path, std::ios::binary);
+    in.read(text.data(), static_cast<std::streamsize>(want));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    return text;
+}
+
+std::vector<std::uint8_t> readBytes(const std::string& errorPath, const std::string& path,
+                                    std::uint64_t offset, std::uint64_t count) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(errorPath, "cannot open '" + path + "' for reading");
+    in.seekg(static_cast<std::streamoff>(offset));
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(count));
+    in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(count));
+    auto got = static_cast<std::uint64_t>(std::max<std::streamsize>(in.gcount(), 0));
+    if (got != count) {
+        fail(errorPath, "truncated data: expected " + std::to_string(count) + " bytes, got " +
+                            std::to_string(got));
+    }
+    return bytes;
+}
+
+std::vector<std::uint8_t> readRawVoxels(const std::string& errorPath, const std::string& dataPath,
+                                        std::uint64_t offset, std::uint64_t expected) {
+    std::uint64_t size = fileSize(dataPath);
+    std::uint64_t available = size > offset ? size - offset : 0;
+    std::string where = dataPath == errorPath ? "" : " in '" + dataPath + "'";
+    if (available < expected) {
+        fail(errorPath, "truncated data" + where + ": expected " + std::to_string(expected) +
+                            " bytes, got " + std::to_string(available));
+    }
+    if (available > expected) {
+        fail(errorPath, "data is too long" + where + ": expected " + std::to_string(expected) +
+                            " bytes, got " + std::to_string(available));
+    }
+    return readBytes(errorPath, dataPath, offset, expected);
+}
+
+std::string siblingPath(const std::string& headerPath, const std::string& name) {
+    fs::path p(name);
+    if (p.is_absolute()) return name;
+    return (fs::path(headerPath).parent_path() / p).string();
+}
+
+std::string fileStem(const std::string& path) { return fs::path(path).stem().string(); }
+
+std::string fileExtension(const std::string& path) {
+    return toLower(fs::path(path).extension().string());
+}
+
+// ---- gzip ------------------------------------------------------------------
+
+namespace {
+
+// Output bookkeeping for inflateGzip: the first `skip` bytes go to a scratch
+// buffer and are dropped, the next `expected` go to `out`, which grows
+// geometrically as data arrives.
+struct InflateTarget {
+    std::uint64_t skip, expected;
+    std::uint64_t skipped = 0, produced = 0;
+    std::vector<std::uint8_t> out;
+    std::uint8_t scratch[1 << 16];
+
+    bool complete() const { return skipped == skip && produced == expected; }
+
+    // Points the stream at where the next output should go. Once complete,
+    // offers one byte of room so that surplus data can be detected.
+    void aim(z_stream& zs) {
+        if (skipped < skip) {
+            zs.next_out = scratch;
+            zs.avail_out = static_cast<uInt>(std::min<std::uint64_t>(sizeof scratch, skip - skipped));
+        } else if (produced < expected) {
+            if (out.size() == produced) {
+                std::uint64_t grown = std::max<std::uint64_t>(2 * out.size(), 1 << 20);
+                out.resize(static_cast<std::size_t>(std::min(grown, expected)));
+            }
+            zs.next_out = out.data() + produced;
+            zs.avail_out = static_cast<uInt>(std::min<std::uint64_t>(out.size() - produced, 1u << 30));
+        } else {
+            zs.next_out = scratch;
+            zs.avail_out = 1;
+        }
+    }
+
+    // Records `n` bytes written since aim(); returns true if they were surplus.
+    bool advance(std::uint64_t n) {
+        if (skipped < skip) skipped += n;
+        else if (produced < expected) produced += n;
+        else return n > 0;
+        return false;
+    }
+};
+
+}  // namespace
+
+std::vector<std::uint8_t> inflateGzipFile(const std::string& errorPath, const std::string& dataPath,
+                                          std::uint64_t offset, std::uint64_t skip,
+                                          std::uint64_t expected) {
+    std::ifstream in(dataPath, std::ios::binary);
+    if (!in) fail(errorPath, "cannot open '" + dataPath + "' for reading");
+    in.seekg(static_cast<std::streamoff>(offset));
+
+    z_stream zs{};
+    if (inflateInit2(&zs, 15 + 32) != Z_OK) fail(errorPath, "cannot initialise zlib");
+    struct Guard { z_stream* zs; ~Guard() { inflateEnd(zs); } } guard{&zs};
+
+    auto target = std::make_unique<InflateTarget>();
+    target->skip = skip;
+    target->expected = expected;
+    std::vector<std::uint8_t> input(1 << 18);
+    bool inputDone = false;
+
+    auto truncated = [&]() {
+        fail(errorPath, "truncated data: expected " + std::to_string(expected) + " bytes, got " +
+                            std::to_string(target->produced));
+    };
+
+    for (;;) {
+        if (zs.avail_in == 0 && !inputDone) {
+            in.read(reinterpret_cast<char*>(input.data()), static_cast<std::streamsize>(input.size()));
+            std::streamsize got = in.gcount();
+            if (got <= 0) inputDone = true;
+            zs.next_in = input.data();
+            zs.avail_in = static_cast<uInt>(std::max<std::streamsize>(got, 0));
+        }
+        target->aim(zs);
+        uInt room = zs.avail_out;
+        int ret = inflate(&zs, Z_NO_FLUSH);
+        if (target->advance(room - zs.avail_out)) {
+            fail(errorPath, "gzip data is too long: more than " + std::to_string(expected) +
+                                " bytes");
+        }
+        if (ret == Z_STREAM_END) {
+            if (target->complete()) break;
+            if (zs.avail_in == 0 && in.peek() == std::char_traits<char>::eof()) truncated();
+            inflateReset(&zs);  // another gzip member follows
+            continue;
+        }
+        if (ret == Z_BUF_ERROR) {
+            // No progress possible: zlib wants more input and there is none.
+            if (zs.avail_in == 0 && inputDone) {
+                if (target->complete()) {
+                    fail(errorPath, "truncated data: gzip stream ends before its end marker");
+                }
+                truncated();
+            }
+            continue;
+        }
+        if (ret != Z_OK) {
+            std::string msg = zs.msg ? zs.msg : "zlib error " + std::to_string(ret);
+            fail(errorPath, "corrupt gzip data (" + msg + ")");
+        }
+    }
+    return std::move(target->out);
+}
+
+// ---- bytes and numbers -----------------------------------------------------
+
+bool hostIsLittleEndian() {
+    const std::uint16_t probe = 1;
+    std::uint8_t first;
+    std::memcpy(&first, &probe, 1);
+    return first == 1;
+}
+
+void swapByteOrder(std::vector<std::uint8_t>& bytes, std::size_t elementSize) {
+    if (elementSize < 2) return;
+    for (std::size_t i = 0; i + elementSize <= bytes.size(); i += elementSize) {
+        std::reverse(bytes.begin() + static_cast<std::ptrdiff_t>(i),
+                     bytes.begin() + static_cast<std::ptrdiff_t>(i + elementSize));
+    }
+}
+
+namespace {
+const char* skipPlus(const std::string& text) {
+    const char* p = text.data();
+    if (text.size() > 1 && *p == '+' && p[1] != '-') ++p;
+    return p;
+}
+}  // namespace
+
+bool parseInt(const std::string& text, long long& out) {
+    if (text.empty()) return false;
+    const char* end = text.data() + text.size();
+    auto [ptr, ec] = std::from_chars(skipPlus(text), end, out);
+    return ec == std::errc() && ptr == end;
+}
+
+bool parseDouble(const std::string& text, double& out) {
+    if (text.empty()) return false;
+    const char* end = text.data() + text.size();
+    auto [ptr, ec] = std::from_chars(skipPlus(text), end, out, std::chars_format::general);
+    return ec == std::errc() && ptr == end;
+}
+
+std::string trim(const std::string& text) {
+    auto isSpace = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+    std::size_t b = 0, e = text.size();
+    while (b < e && isSpace(text[b])) ++b;
+    while (e > b && isSpace(text[e - 1])) --e;
+    return text.substr(b, e - b);
+}
+
+std::string toLower(std::string text) {
+    for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return text;
+}
+
+std::vector<std::string> splitWords(const std::string& text) {
+    std::vector<std::string> words;
+    std::size_t i = 0;
+    while (i < text.size()) {
+        while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+        std::size_t start = i;
+        while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+        if (i > start) words.push_back(text.substr(start, i - start));
+    }
+    return words;
+}
+
+std::uint64_t checkedVoxelCount(const std::string& path, const std::string& what,
+                                long long nx, long long ny, long long nz) {
+    std::string listed = std::to_string(nx) + " " + std::to_string(ny) + " " + std::to_string(nz);
+    if (nx <= 0 || ny <= 0 || nz <= 0) fail(path, what + " must be positive, got " + listed);
+    auto tooMany = [&]() {
+        fail(path, what + " " + listed + " exceed the limit of " + std::to_string(kMaxVoxels) +
+                       " voxels");
+    };
+    std::uint64_t count = 1;
+    for (long long n : {nx, ny, nz}) {
+        if (static_cast<std::uint64_t>(n) > kMaxVoxels) tooMany();
+        count *= static_cast<std::uint64_t>(n);  // both factors <= 2^31: no overflow
+        if (count > kMaxVoxels) tooMany();
+    }
+    return count;
+}
+
+Volume buildVolume(const std::string& path, glm::ivec3 dims, VoxelType type, glm::dvec3 spacing,
+                   std::vector<std::uint8_t> bytes) {
+    try {
+        return Volume(dims, type, spacing, std::move(bytes), fileStem(path));
+    } catch (const VolumeError& e) {
+        fail(path, e.problem());
+    }
+}
+
+}  // namespace voxlab::detail

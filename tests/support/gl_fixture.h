@@ -1,0 +1,44 @@
+// Test support: one headless GL context and render engine per test binary,
+// plus small helpers for rendering a scene and reading 8-bit pixels.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "voxlab/gl_context.h"
+#include "voxlab/image.h"
+#include "voxlab/render_engine.h"
+#include "voxlab/scene.h"
+#include "voxlab/volume.h"
+
+namespace voxlab::testing {
+
+class GlTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        if (!context_) context_ = createHeadlessContext();
+        if (!engine_) engine_ = std::make_unique<RenderEngine>();
+    }
+    static RenderEngine& engine() { return *engine_; }
+
+    // Renders `scene` on `volume` and returns 8-bit grey values (red channel).
+    static std::vector<int> renderGrey(const Volume& volume, const Scene& scene) {
+        engine_->setVolume(volume);
+        const Image img = engine_->render(scene);
+        std::vector<int> grey(std::size_t(img.width) * img.height);
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x) grey[std::size_t(y) * img.width + x] = toByte(img.at(x, y).r);
+        return grey;
+    }
+
+private:
+    static inline std::unique_ptr<GlContext> context_;
+    static inline std::unique_ptr<RenderEngine> engine_;
+};
+
+inline std::string datasetPath(const std::string& name) {
+    return std::string(VOXLAB_SOURCE_DIR) + "/datasets/" + name;
+}
+
+}  // namespace voxlab::testing

@@ -15,7 +15,7 @@
 namespace voxlab::testing {
 
 class GlTest : public ::testing::Test {
-protected:
+public:
     static void SetUpTestSuite() {
         if (!context_) context_ = createHeadlessContext();
         if (!engine_) engine_ = std::make_unique<RenderEngine>();

@@ -32,10 +32,10 @@ public:
 
 struct PreprocessedShader {
     std::string text;
-    std::vector<std::string> files;  // index = GLSL source-string number in #line
+    std::vector<std::string> files;  // index = file id, encoded in #line numbers
 
     // Rewrites "S:L(C): ..." (Mesa) and "S(L) : ..." (NVIDIA) into
-    // "file:L:C: ..." using `files`.
+    // "file:line:C: ...". Line numbers carry the file: L = id*100000 + line.
     std::string mapLog(const std::string& log) const;
 };
 

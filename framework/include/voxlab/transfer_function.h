@@ -72,7 +72,7 @@ public:
     // says how far off it is (a step, two points at one value, cannot be
     // baked away: it costs at least half its jump, all of it on an entry).
     TransferFunctionTable bake(double lo, double hi, double tolerance = 0.5 / 255.0,
-                               int maxSize = 65536) const;
+                               int maxSize = 1 << 20) const;
 
     // JSON: an array of {"value": v, "color": [r,g,b], "alpha": a}, or an
     // object {"points": [...], "name": "...", "description": "..."}. Every

@@ -44,6 +44,15 @@ bool parseInclude(const std::string& line, std::string* name) {
     return true;
 }
 
+// Mesa honours the line number of `#line L S` but not the source number S
+// in its logs, so each file's lines are numbered from fileId * kLineStride:
+// a reported line L means file L / kLineStride, line L % kLineStride.
+constexpr int kLineStride = 100000;
+
+std::string lineDirective(int fileId, int line) {
+    return "#line " + std::to_string(fileId * kLineStride + line) + "\n";
+}
+
 struct Preprocessor {
     const ShaderLibrary& lib;
     PreprocessedShader out;
@@ -62,19 +71,19 @@ struct Preprocessor {
         std::istringstream in(readText(path));
         std::string line;
         int lineNo = 0;
-        if (!isEntry) out.text += "#line 1 " + std::to_string(fileId) + "\n";
+        if (!isEntry) out.text += lineDirective(fileId, 1);
         while (std::getline(in, line)) {
             ++lineNo;
             std::string name;
             if (lineNo == 1 && isEntry) {
                 // `#version` must come first; everything after it is
                 // numbered from line 2 of file 0.
-                out.text += line + "\n#line 2 0\n";
+                out.text += line + "\n" + lineDirective(fileId, 2);
                 continue;
             }
             if (parseInclude(line, &name)) {
                 addFile(lib.resolve(name, displayPath(path) + ":" + std::to_string(lineNo)), false);
-                out.text += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(fileId) + "\n";
+                out.text += lineDirective(fileId, lineNo + 1);
             } else {
                 out.text += line + "\n";
             }
@@ -112,14 +121,17 @@ std::string PreprocessedShader::mapLog(const std::string& log) const {
     while (std::getline(in, line)) {
         if (line.empty()) continue;
         std::smatch m;
-        auto fileName = [&](const std::string& id) {
-            const size_t i = std::stoul(id);
-            return i < files.size() ? files[i] : "<source " + id + ">";
+        // "file:line" from an encoded line number (see kLineStride).
+        auto where = [&](const std::string& encoded) {
+            const long n = std::stol(encoded);
+            const std::size_t id = std::size_t(n / kLineStride);
+            return (id < files.size() ? files[id] : "<source " + std::to_string(id) + ">") + ":" +
+                   std::to_string(n % kLineStride);
         };
         if (std::regex_match(line, m, mesa))
-            line = fileName(m[1]) + ":" + std::string(m[2]) + ":" + std::string(m[3]) + ": " + std::string(m[4]);
+            line = where(m[2]) + ":" + std::string(m[3]) + ": " + std::string(m[4]);
         else if (std::regex_match(line, m, nvidia))
-            line = fileName(m[1]) + ":" + std::string(m[2]) + ": " + std::string(m[3]);
+            line = where(m[2]) + ": " + std::string(m[3]);
         result += (result.empty() ? "" : "\n") + line;
     }
     return result.empty() ? "shader compilation failed with an empty log" : result;

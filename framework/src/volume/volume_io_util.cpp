@@ -64,7 +64,8 @@ std::vector<std::uint8_t> readRawVoxels(const std::string& errorPath, const std:
                                         std::uint64_t offset, std::uint64_t expected) {
     std::uint64_t size = fileSize(dataPath);
     std::uint64_t available = size > offset ? size - offset : 0;
-    std::string where = dataPath == errorPath ? "" : " in '" + dataPath + "'";
+    std::string where =
+        dataPath == errorPath ? "" : " in '" + fs::path(dataPath).filename().string() + "'";
     if (available < expected) {
         fail(errorPath, "truncated data" + where + ": expected " + std::to_string(expected) +
                             " bytes, got " + std::to_string(available));

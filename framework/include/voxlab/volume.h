@@ -88,7 +88,7 @@ private:
 // voxlab::Error with a one-line message naming the file and the problem.
 Volume loadVolume(const std::string& pathOrSpec);
 
-// Individual loaders (see framework/src/volume_io/).
+// Individual loaders (see framework/src/volume/).
 Volume loadNrrd(const std::string& path);
 Volume loadFld(const std::string& path);
 Volume loadDatRaw(const std::string& path);

@@ -1,0 +1,190 @@
+// The command line end to end: every subcommand, flags over scenes, and the
+// error paths (one line on stderr, non-zero exit).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "support/run_command.h"
+#include "voxlab/image.h"
+#include "voxlab/volume.h"
+
+namespace voxlab::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("voxlab_cli_" + std::to_string(::getpid()) + "_" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::string write(const std::string& name, const std::string& text) const {
+        std::ofstream(path(name), std::ios::binary) << text;
+        return path(name);
+    }
+    // Expects failure with exactly one line on stderr containing `phrase`.
+    void expectOneLineError(const std::string& args, const std::string& phrase) const {
+        const CommandResult r = runVoxlab(args);
+        EXPECT_NE(r.exitCode, 0) << args;
+        EXPECT_EQ(lineCount(r.err), 1) << args << "\nstderr: " << r.err;
+        EXPECT_NE(r.err.find(phrase), std::string::npos) << args << "\nstderr: " << r.err;
+        EXPECT_EQ(r.err.rfind("voxlab: ", 0), 0u) << r.err;
+    }
+    fs::path dir_;
+};
+
+TEST_F(Cli, HelpWorksForEveryCommand) {
+    for (const std::string cmd : {"render", "info", "list", "view"}) {
+        const CommandResult r = runVoxlab(cmd + " --help");
+        EXPECT_EQ(r.exitCode, 0) << cmd;
+        EXPECT_NE(r.out.find("usage: voxlab " + cmd), std::string::npos) << r.out;
+    }
+    const CommandResult r = runVoxlab("help");
+    EXPECT_EQ(r.exitCode, 0);
+    EXPECT_NE(r.out.find("render"), std::string::npos);
+}
+
+TEST_F(Cli, RenderWritesTheMipAndPrintsItsPath) {
+    const std::string out = path("shells.png");
+    const CommandResult r = runVoxlab("render --dataset phantom:shells:32 --view +z --size 32x32 "
+                                      "--interpolation nearest --step 1 --window 0,255 --out " + out);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out, out + "\n");
+    const Image img = loadPng(out);
+    ASSERT_EQ(img.width, 32);
+    ASSERT_EQ(img.height, 32);
+    // Independent check: the maximum over z of the phantom's voxels.
+    const Volume v = makePhantom("phantom:shells:32");
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) {
+            double m = 0;
+            for (int z = 0; z < 32; ++z) m = std::max(m, v.value(x, y, z));
+            ASSERT_NEAR(img.at(x, y).r * 255.0, m, 1.0) << "pixel " << x << "," << y;
+        }
+}
+
+TEST_F(Cli, FlagsOverrideTheSceneFile) {
+    const std::string scene = write("scene.json", R"({"dataset": "phantom:sphere:16", "renderer": "slicer",
+        "size": [40, 30], "sampling": {"step": 0.25}, "parameters": {"offset": 2}})");
+    const CommandResult r = runVoxlab("render " + scene + " --renderer mip --size 20x10 --print-scene");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("\"renderer\": \"mip\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("20"), std::string::npos);
+    EXPECT_NE(r.out.find("0.25"), std::string::npos) << "the scene's step survives";
+    // Rendering it for real: the slicer's offset parameter is unknown to mip.
+    const CommandResult bad = runVoxlab("render " + scene + " --renderer mip --out " + path("x.png"));
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.err.find("parameter 'offset' is not declared"), std::string::npos) << bad.err;
+}
+
+TEST_F(Cli, RenderAcceptsEveryRendererAndBothProjections) {
+    for (const std::string renderer : {"slicer", "mip"})
+        for (const std::string proj : {"orthographic", "perspective"}) {
+            const std::string out = path(renderer + proj + ".png");
+            const CommandResult r = runVoxlab("render --dataset phantom:marschner-lobb:24 --renderer " + renderer +
+                                              " --projection " + proj + " --azimuth 30 --elevation 10 "
+                                              "--size 48x32 --out " + out);
+            ASSERT_EQ(r.exitCode, 0) << r.err;
+            const Image img = loadPng(out);
+            EXPECT_EQ(img.width, 48);
+            EXPECT_EQ(img.height, 32);
+            float brightest = 0;
+            for (float c : img.rgba) brightest = std::max(brightest, c);
+            EXPECT_GT(brightest, 0.5f) << renderer << " " << proj << " rendered nothing";
+        }
+}
+
+TEST_F(Cli, InfoDescribesTheVolume) {
+    const CommandResult r = runVoxlab("info cthead.nrrd");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("256 x 256 x 113"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("uint16"), std::string::npos);
+    EXPECT_NE(r.out.find("spacing:  1 1 2"), std::string::npos);
+    const Volume v = loadVolume(std::string(VOXLAB_SOURCE_DIR) + "/datasets/cthead.nrrd");
+    char range[64];
+    std::snprintf(range, sizeof range, "range:    %g .. %g", v.minValue(), v.maxValue());
+    EXPECT_NE(r.out.find(range), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("histogram"), std::string::npos);
+}
+
+TEST_F(Cli, ListNamesEveryRendererWithItsParameters) {
+    const CommandResult r = runVoxlab("list");
+    ASSERT_EQ(r.exitCode, 0);
+    EXPECT_NE(r.out.find("slicer"), std::string::npos);
+    EXPECT_NE(r.out.find("mip"), std::string::npos);
+    EXPECT_NE(r.out.find("offset"), std::string::npos);
+}
+
+TEST_F(Cli, ErrorsAreOneLineWithANonZeroExit) {
+    expectOneLineError("render --dataset " + path("missing.nrrd"), "missing.nrrd: no such file");
+    expectOneLineError("render --dataset " +
+                           write("trunc.nrrd", "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 8 8 8\nencoding: raw\n\nabc"),
+                       "trunc.nrrd: truncated data");
+    expectOneLineError("render --dataset " +
+                           write("huge.nrrd", "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 100000 100000 100000\n"
+                                              "encoding: raw\n\nabc"),
+                       "huge.nrrd");
+    expectOneLineError("render --dataset phantom:sphere:8 --renderer nope", "unknown renderer 'nope'");
+    expectOneLineError("render --dataset phantom:sphere:8 --frobnicate", "unknown option --frobnicate");
+    expectOneLineError("render --dataset phantom:sphere:8 --size 10by10", "--size");
+    expectOneLineError("render --dataset phantom:sphere:8 --view +w", "unknown view '+w'");
+    expectOneLineError("render --dataset phantom:sphere:8 --window 5,1", "--window");
+    expectOneLineError("render --dataset phantom:sphere:8 --param nope=1", "parameter 'nope' is not declared");
+    expectOneLineError("render --dataset phantom:sphere:8 --step", "needs a value");
+    expectOneLineError("render", "no dataset");
+    expectOneLineError("render " + write("bad.json", "{\"dataset\": 3}"), "dataset");
+    expectOneLineError("render " + write("typo.json", "{\"dataset\": \"phantom:sphere:8\", \"renderr\": \"mip\"}"),
+                       "renderr");
+    expectOneLineError("render --dataset phantom:sphere:8 --tf " + path("none.json"), "none.json");
+    expectOneLineError("info " + write("junk.fld", "not an avs file"), "junk.fld");
+    expectOneLineError("render --dataset phantom:sphere:8 --out /nonexistent/dir/x.png", "/nonexistent/dir/x.png");
+    const CommandResult r = runVoxlab("frobnicate");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("unknown command"), std::string::npos);
+}
+
+TEST_F(Cli, BrokenStudentShaderIsReportedWithFileAndLine) {
+    fs::create_directories(dir_ / "mip");
+    write("mip/mip.glsl", "float mip_ray(Ray ray) {\n    return oops;\n}\n");
+    const CommandResult r = runVoxlab("render --dataset phantom:sphere:8 --implementation " + dir_.string() +
+                                      " --out " + path("x.png"));
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("mip/mip.glsl:2:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("oops"), std::string::npos) << r.err;
+}
+
+// The viewer in a real window under Xvfb: a scripted screenshot that shows
+// the panel and a rendered volume.
+TEST_F(Cli, ViewerScreenshotUnderXvfb) {
+    if (runShell("which xvfb-run").exitCode != 0) GTEST_SKIP() << "xvfb-run is not installed";
+    const std::string out = path("viewer.png");
+    const CommandResult r =
+        runShell("xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(VOXLAB_BINARY) +
+                     " view --dataset bucky.nrrd --window-size 640x480 --frames 3 --screenshot " + out,
+                 180);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image img = loadPng(out);
+    ASSERT_EQ(img.width, 640);
+    ASSERT_EQ(img.height, 480);
+    // The ImGui panel (top left) is neither black nor uniform; the volume
+    // (centre right) has bright pixels.
+    double panelSum = 0, panelMin = 1, panelMax = 0, bright = 0;
+    for (int y = 15; y < 100; ++y)
+        for (int x = 15; x < 300; ++x) {
+            const float c = img.at(x, y).g;
+            panelSum += c, panelMin = std::min<double>(panelMin, c), panelMax = std::max<double>(panelMax, c);
+        }
+    for (int y = 140; y < 340; ++y)
+        for (int x = 380; x < 580; ++x) bright += img.at(x, y).r > 0.5f;
+    EXPECT_GT(panelSum / (85.0 * 285.0), 0.05) << "no panel drawn";
+    EXPECT_GT(panelMax - panelMin, 0.3) << "panel has no text";
+    EXPECT_GT(bright, 100) << "no volume drawn";
+}
+
+}  // namespace
+}  // namespace voxlab::testing

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "support/gl_fixture.h"
 
@@ -79,10 +80,26 @@ Expected cpuMip(const Volume& v, const AxisView& view, int width, int height) {
     return e;
 }
 
+// "signed-random": int16 values over the whole range, -32768 included
+// (headsq is stored signed but has no negative values); else a file or phantom.
+Volume testVolume(const std::string& name) {
+    if (name != "signed-random") return loadVolume(name);
+    const glm::ivec3 d(23, 17, 29);
+    std::vector<std::uint8_t> bytes(std::size_t(d.x) * d.y * d.z * 2);
+    std::uint32_t state = 12345;
+    for (std::size_t i = 0; i < bytes.size() / 2; ++i) {
+        state = state * 1664525u + 1013904223u;  // a fixed LCG: reproducible
+        std::int16_t v = std::int16_t(state >> 16);
+        if (i % 97 == 0) v = -32768;
+        std::memcpy(&bytes[i * 2], &v, 2);
+    }
+    return Volume(d, VoxelType::Int16, {0.8, 1.1, 1.0}, bytes, "signed-random");
+}
+
 class MipConventions : public GlTest, public ::testing::WithParamInterface<std::string> {};
 
 TEST_P(MipConventions, AxisMipEqualsCpuMaximumForEveryView) {
-    const Volume v = loadVolume(GetParam());
+    const Volume v = testVolume(GetParam());
     for (const AxisView& view : kViews) {
         SCOPED_TRACE(std::string("view ") + view.name);
         Scene scene;
@@ -120,7 +137,8 @@ INSTANTIATE_TEST_SUITE_P(RealAndPhantomVolumes, MipConventions,
                                            datasetPath("cthead.nrrd"),     // uint16, spacing 1 1 2
                                            datasetPath("stent.nrrd"),      // uint16
                                            datasetPath("headsq.nrrd"),     // int16, 3.2 3.2 1.5
-                                           std::string("phantom:shepp-logan:48")),  // float32
+                                           std::string("phantom:shepp-logan:48"),   // float32
+                                           std::string("signed-random")),           // int16 < 0
                          [](const auto& info) {
                              std::string s = info.param.substr(info.param.find_last_of("/:") + 1);
                              for (char& c : s)

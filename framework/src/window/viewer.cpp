@@ -8,6 +8,7 @@
 #include <imgui_impl_opengl3.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include "voxlab/error.h"
@@ -130,7 +131,9 @@ void handleInput(GLFWwindow* window, ViewerState& s, RenderEngine& engine) {
         CameraSpec& c = s.scene.camera;
         if (!c.view.empty()) axisViewToOrbit(c.view, &c.azimuth, &c.elevation), c.view.clear();
         c.azimuth += 0.4 * (x - s.lastX);
-        c.elevation = glm::clamp(c.elevation + 0.4 * (y - s.lastY), -90.0, 90.0);
+        // No clamp: the orbit passes smoothly over the poles (the image's up
+        // direction turns with it), so elevation just wraps to (-180, 180].
+        c.elevation = std::remainder(c.elevation + 0.4 * (y - s.lastY), 360.0);
         s.dirty = true;
     }
     s.lastX = x, s.lastY = y;

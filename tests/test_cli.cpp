@@ -158,6 +158,28 @@ TEST_F(Cli, BrokenStudentShaderIsReportedWithFileAndLine) {
     EXPECT_NE(r.err.find("oops"), std::string::npos) << r.err;
 }
 
+// Every renderer runs unchanged on each headless backend. On this machine
+// both are llvmpipe, so the images must agree exactly; where EGL has no
+// display at all the test is skipped (the error must still be one line).
+TEST_F(Cli, EglAndOsMesaRenderTheSameImage) {
+    for (const std::string renderer : {"slicer", "mip"}) {
+        const std::string args = "render --dataset tooth.nrrd --renderer " + renderer +
+                                 " --azimuth 40 --elevation 30 --size 64x48 --out ";
+        const CommandResult osmesa = runVoxlab(args + path("osmesa.png") + " --gl osmesa");
+        ASSERT_EQ(osmesa.exitCode, 0) << osmesa.err;
+        const CommandResult egl = runVoxlab(args + path("egl.png") + " --gl egl");
+        if (egl.exitCode != 0) {
+            EXPECT_EQ(lineCount(egl.err), 1) << egl.err;
+            GTEST_SKIP() << "no EGL display here: " << egl.err;
+        }
+        const Image a = loadPng(path("osmesa.png")), b = loadPng(path("egl.png"));
+        ASSERT_EQ(a.rgba.size(), b.rgba.size());
+        float worst = 0;
+        for (std::size_t i = 0; i < a.rgba.size(); ++i) worst = std::max(worst, std::abs(a.rgba[i] - b.rgba[i]));
+        EXPECT_LE(worst, 1.0f / 255.0f) << renderer;
+    }
+}
+
 // The viewer in a real window under Xvfb: a scripted screenshot that shows
 // the panel and a rendered volume.
 TEST_F(Cli, ViewerScreenshotUnderXvfb) {

@@ -9,21 +9,12 @@
 #include <cmath>
 #include <cstring>
 
+#include "support/axis_views.h"
 #include "support/gl_fixture.h"
 
 namespace voxlab::testing {
 namespace {
 
-// The README's axis-view table, restated independently of camera.cpp:
-// forward axis/sign, image-right axis/sign, image-down axis/sign.
-struct AxisView {
-    const char* name;
-    int fwdAxis, fwdSign, rightAxis, rightSign, downAxis, downSign;
-};
-const AxisView kViews[] = {
-    {"+z", 2, +1, 0, +1, 1, +1}, {"-z", 2, -1, 0, -1, 1, +1}, {"+x", 0, +1, 2, -1, 1, +1},
-    {"-x", 0, -1, 2, +1, 1, +1}, {"+y", 1, +1, 0, -1, 2, +1}, {"-y", 1, -1, 0, +1, 2, +1},
-};
 
 struct Expected {
     // Acceptable grey levels per pixel: one, or two when the pixel centre
@@ -100,7 +91,7 @@ class MipConventions : public GlTest, public ::testing::WithParamInterface<std::
 
 TEST_P(MipConventions, AxisMipEqualsCpuMaximumForEveryView) {
     const Volume v = testVolume(GetParam());
-    for (const AxisView& view : kViews) {
+    for (const AxisView& view : kAxisViews) {
         SCOPED_TRACE(std::string("view ") + view.name);
         Scene scene;
         scene.renderer = "mip";

@@ -2,6 +2,8 @@
 // trip through toJson, transfer functions by path, and the data search path.
 #include <gtest/gtest.h>
 
+#include "support/error_of.h"
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -48,15 +50,7 @@ Scene parse(const std::string& text, const std::string& baseDir = "") {
     return Scene::fromJson(json::parse(text), "scene.json", baseDir);
 }
 
-template <class F>
-std::string errorOf(F f) {
-    try {
-        f();
-    } catch (const voxlab::Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using voxlab::testing::errorOf;
 
 const char* kPoints = R"([{"value": 40, "color": [1, 1, 1], "alpha": 0},
                           {"value": 200, "color": [1, 0.5, 0.25], "alpha": 0.75}])";

@@ -6,19 +6,12 @@
 
 #include <cmath>
 
+#include "support/axis_views.h"
 #include "support/gl_fixture.h"
 
 namespace voxlab::testing {
 namespace {
 
-struct AxisView {
-    const char* name;
-    int fwdAxis, fwdSign, rightAxis, rightSign, downAxis, downSign;
-};
-const AxisView kViews[] = {
-    {"+z", 2, +1, 0, +1, 1, +1}, {"-z", 2, -1, 0, -1, 1, +1}, {"+x", 0, +1, 2, -1, 1, +1},
-    {"-x", 0, -1, 2, +1, 1, +1}, {"+y", 1, +1, 0, -1, 2, +1}, {"-y", 1, -1, 0, +1, 2, +1},
-};
 
 // The slicer's `offset` (in smallest spacings, along the view direction)
 // that puts the plane through the centres of voxel layer k on the view axis.
@@ -55,7 +48,7 @@ TEST_P(SlicerLayers, VoxelCentrePlaneReproducesTheSlice) {
     // tooth is non-cubic (103x94x161); with isotropic spacing the image size
     // equal to the slice's dimensions puts pixel centres on voxel centres.
     const Volume v = loadVolume(datasetPath("tooth.nrrd"));
-    for (const AxisView& view : kViews) {
+    for (const AxisView& view : kAxisViews) {
         const int n = v.dims()[view.fwdAxis];
         for (int k : {0, n / 3, n / 2, n - 1}) {
             SCOPED_TRACE(std::string("view ") + view.name + ", layer " + std::to_string(k));
@@ -79,7 +72,7 @@ INSTANTIATE_TEST_SUITE_P(Interpolations, SlicerLayers,
 // Between two layers, trilinear interpolation gives their average.
 TEST_F(GlTest, SlicerHalfwayBetweenLayersAveragesThem) {
     const Volume v = loadVolume(datasetPath("bucky.nrrd"));
-    const AxisView& view = kViews[0];  // +z
+    const AxisView& view = kAxisViews[0];  // +z
     Scene scene;
     scene.renderer = "slicer";
     scene.camera.view = "+z";

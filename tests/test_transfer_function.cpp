@@ -2,6 +2,8 @@
 // against an oracle written here, not against evaluate()), and JSON.
 #include <gtest/gtest.h>
 
+#include "support/error_of.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -73,16 +75,7 @@ void expectVec(glm::vec4 got, glm::vec4 want) {
     for (int c = 0; c < 4; ++c) EXPECT_NEAR(got[c], want[c], 1e-6) << "component " << c;
 }
 
-// Runs f and returns the voxlab::Error message it throws ("" if none).
-template <class F>
-std::string errorOf(F f) {
-    try {
-        f();
-    } catch (const voxlab::Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using voxlab::testing::errorOf;
 
 }  // namespace
 

@@ -92,6 +92,17 @@ struct Preprocessor {
     }
 };
 
+// The info log of a shader or program, as a string without the trailing NUL.
+template <class GetIv, class GetLog>
+std::string infoLog(GLuint object, GetIv getIv, GetLog getLog) {
+    GLint len = 0;
+    getIv(object, GL_INFO_LOG_LENGTH, &len);
+    std::string log(std::max(len, 1), '\0');
+    getLog(object, len, nullptr, &log[0]);
+    log.resize(std::strlen(log.c_str()));
+    return log;
+}
+
 unsigned compileStage(GLenum stage, const PreprocessedShader& src) {
     const GLuint shader = glCreateShader(stage);
     const char* text = src.text.c_str();
@@ -100,12 +111,8 @@ unsigned compileStage(GLenum stage, const PreprocessedShader& src) {
     GLint ok = 0;
     glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
     if (!ok) {
-        GLint len = 0;
-        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
-        std::string log(std::max(len, 1), '\0');
-        glGetShaderInfoLog(shader, len, nullptr, &log[0]);
+        const std::string log = infoLog(shader, glGetShaderiv, glGetShaderInfoLog);
         glDeleteShader(shader);
-        log.resize(std::strlen(log.c_str()));
         throw ShaderError(src.mapLog(log));
     }
     return shader;
@@ -183,11 +190,7 @@ ShaderProgram::ShaderProgram(const ShaderLibrary& library, const std::string& ve
     GLint ok = 0;
     glGetProgramiv(program_, GL_LINK_STATUS, &ok);
     if (!ok) {
-        GLint len = 0;
-        glGetProgramiv(program_, GL_INFO_LOG_LENGTH, &len);
-        std::string log(std::max(len, 1), '\0');
-        glGetProgramInfoLog(program_, len, nullptr, &log[0]);
-        log.resize(std::strlen(log.c_str()));
+        const std::string log = infoLog(program_, glGetProgramiv, glGetProgramInfoLog);
         glDeleteProgram(program_);
         program_ = 0;
         throw ShaderError(fragmentName + ": link error: " + fs.mapLog(log));

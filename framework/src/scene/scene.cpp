@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_text.h"
 #include "voxlab/error.h"
 
 namespace voxlab {
@@ -196,22 +197,8 @@ Scene Parser::parse(const json& j) const {
     return s;
 }
 
-// The shortest decimal that reads back as the same float (see transfer_function.cpp).
-double shortFloat(float f) {
-    char buf[32];
-    auto res = std::to_chars(buf, buf + sizeof buf, f);
-    const double d = std::strtod(std::string(buf, res.ptr).c_str(), nullptr);
-    return float(d) == f ? d : double(f);
-}
-
-// nlohmann's messages without their "[json.exception...] " tag, on one line.
-std::string oneLine(std::string msg) {
-    if (msg.rfind("[json.exception.", 0) == 0 && msg.find("] ") != std::string::npos)
-        msg.erase(0, msg.find("] ") + 2);
-    for (char& c : msg)
-        if (c == '\n' || c == '\r' || c == '\t') c = ' ';
-    return msg;
-}
+using json_text::oneLine;
+using json_text::shortFloat;
 
 }  // namespace
 

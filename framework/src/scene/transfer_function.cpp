@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_text.h"
 #include "voxlab/error.h"
 
 namespace voxlab {
@@ -26,23 +27,8 @@ bool inUnit(double x) { return std::isfinite(x) && x >= 0.0 && x <= 1.0; }
 // "where: " or nothing, so that messages still read well without a file name.
 std::string prefix(const std::string& where) { return where.empty() ? "" : where + ": "; }
 
-// A float written as the shortest decimal that reads back as the same float
-// (0.1f is written 0.1, not 0.10000000149011612).
-double shortFloat(float f) {
-    char buf[32];
-    auto res = std::to_chars(buf, buf + sizeof buf, f);
-    const double d = std::strtod(std::string(buf, res.ptr).c_str(), nullptr);
-    return float(d) == f ? d : double(f);
-}
-
-// nlohmann's messages without their "[json.exception...] " tag, on one line.
-std::string oneLine(std::string msg) {
-    if (msg.rfind("[json.exception.", 0) == 0 && msg.find("] ") != std::string::npos)
-        msg.erase(0, msg.find("] ") + 2);
-    for (char& c : msg)
-        if (c == '\n' || c == '\r' || c == '\t') c = ' ';
-    return msg;
-}
+using json_text::oneLine;
+using json_text::shortFloat;
 
 // One control point from JSON; `at` is its location ("tf.json: points[2]").
 ControlPoint parsePoint(const json& j, const std::string& at) {

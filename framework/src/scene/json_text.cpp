@@ -1,8 +1,13 @@
 // voxlab: see json_text.h.
 #include "json_text.h"
 
+#include <cerrno>
 #include <charconv>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
+
+#include "voxlab/error.h"
 
 namespace voxlab::json_text {
 
@@ -19,6 +24,16 @@ std::string oneLine(std::string msg) {
     for (char& c : msg)
         if (c == '\n' || c == '\r' || c == '\t') c = ' ';
     return msg;
+}
+
+nlohmann::json readJsonFile(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw Error(path + ": cannot open: " + std::strerror(errno));
+    try {
+        return nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(path + ": " + oneLine(e.what()));
+    }
 }
 
 }  // namespace voxlab::json_text

@@ -197,7 +197,6 @@ Scene Parser::parse(const json& j) const {
     return s;
 }
 
-using json_text::oneLine;
 using json_text::shortFloat;
 
 }  // namespace
@@ -207,14 +206,7 @@ Scene Scene::fromJson(const json& j, const std::string& where, const std::string
 }
 
 Scene Scene::load(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot open: " + std::strerror(errno));
-    json j;
-    try {
-        j = json::parse(in);
-    } catch (const json::exception& e) {
-        throw Error(path + ": " + oneLine(e.what()));
-    }
+    const json j = json_text::readJsonFile(path);
     return fromJson(j, path, std::filesystem::path(path).parent_path().string());
 }
 

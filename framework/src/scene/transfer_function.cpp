@@ -27,7 +27,6 @@ bool inUnit(double x) { return std::isfinite(x) && x >= 0.0 && x <= 1.0; }
 // "where: " or nothing, so that messages still read well without a file name.
 std::string prefix(const std::string& where) { return where.empty() ? "" : where + ": "; }
 
-using json_text::oneLine;
 using json_text::shortFloat;
 
 // One control point from JSON; `at` is its location ("tf.json: points[2]").
@@ -179,14 +178,7 @@ TransferFunction TransferFunction::fromJson(const json& j, const std::string& wh
 }
 
 TransferFunction TransferFunction::load(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot open: " + std::strerror(errno));
-    json j;
-    try {
-        j = json::parse(in);
-    } catch (const json::exception& e) {
-        throw Error(path + ": " + oneLine(e.what()));
-    }
+    const json j = json_text::readJsonFile(path);
     return fromJson(j, path);
 }
 

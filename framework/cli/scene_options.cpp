@@ -38,8 +38,10 @@ void parseSize(const std::string& text, Scene* scene) {
     if (x == std::string::npos) throw Error("option --size: expected WxH, got '" + text + "'");
     scene->width = parseInt(text.substr(0, x), "--size");
     scene->height = parseInt(text.substr(x + 1), "--size");
-    if (scene->width < 1 || scene->height < 1 || scene->width > 8192 || scene->height > 8192)
-        throw Error("option --size: " + text + " is outside 1x1..8192x8192");
+    if (scene->width < 1 || scene->height < 1 || scene->width > kMaxImageSize || scene->height > kMaxImageSize) {
+        const std::string max = std::to_string(kMaxImageSize);
+        throw Error("option --size: " + text + " is outside 1x1.." + max + "x" + max);
+    }
 }
 
 void parseParam(const std::string& text, Scene* scene) {
@@ -84,7 +86,8 @@ Scene sceneFromArgs(const Args& args, const std::string& command, const Scene* b
     if (auto v = args.get("size")) parseSize(*v, &scene);
     if (auto v = args.get("step")) {
         scene.step = parseNumber(*v, "--step");
-        if (!(scene.step > 0.0 && scene.step <= 64.0)) throw Error("option --step: must be in (0, 64]");
+        if (!(scene.step > 0.0 && scene.step <= kMaxStep))
+            throw Error("option --step: must be in (0, " + std::to_string(int(kMaxStep)) + "]");
     }
     if (auto v = args.get("interpolation")) scene.interpolation = parseInterpolation(*v);
     if (auto v = args.get("window")) {

@@ -42,6 +42,10 @@ Interpolation parseInterpolation(const std::string& name);  // throws voxlab::Er
 // line; the renderer's declared ParameterSpec checks and converts it.
 using ParameterValues = std::map<std::string, double>;
 
+// Limits every way of writing a scene (JSON, command line, viewer) obeys.
+constexpr int kMaxImageSize = 8192;  // pixels, per side
+constexpr double kMaxStep = 64.0;    // in smallest spacings; steps are in (0, kMaxStep]
+
 struct Scene {
     std::string dataset;          // resolved path or phantom spec
     std::string renderer = "mip";

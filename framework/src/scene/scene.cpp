@@ -128,10 +128,11 @@ Scene Parser::parse(const json& j) const {
 
     if (j.contains("size")) {
         const json& size = j["size"];
-        const char* msg = "expected [width, height], integers in 1..8192";
+        const std::string msg = "expected [width, height], integers in 1.." + std::to_string(kMaxImageSize);
         if (!size.is_array() || size.size() != 2) fail("size", msg);
         for (const json& n : size)
-            if (!n.is_number_integer() || n.get<long long>() < 1 || n.get<long long>() > 8192) fail("size", msg);
+            if (!n.is_number_integer() || n.get<long long>() < 1 || n.get<long long>() > kMaxImageSize)
+                fail("size", msg);
         s.width = size[0].get<int>();
         s.height = size[1].get<int>();
     }
@@ -142,7 +143,8 @@ Scene Parser::parse(const json& j) const {
         onlyKeys(sampling, "sampling", {"step", "interpolation"});
         if (sampling.contains("step")) {
             s.step = number(sampling["step"], "sampling.step");
-            if (s.step <= 0.0 || s.step > 64.0) fail("sampling.step", "expected a number > 0 and <= 64");
+            if (s.step <= 0.0 || s.step > kMaxStep)
+                fail("sampling.step", "expected a number > 0 and <= " + std::to_string(int(kMaxStep)));
         }
         if (sampling.contains("interpolation")) {
             const std::string name = string(sampling["interpolation"], "sampling.interpolation");

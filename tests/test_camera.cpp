@@ -48,7 +48,14 @@ TEST(Camera, OrbitAnglesReproduceAxisViews) {
         expectNear(a.forward, b.forward);
         expectNear(a.right, b.right);
         expectNear(a.down, b.down);
+        // The viewer continues a drag from these angles.
+        double az = 1e9, el = 1e9;
+        ASSERT_TRUE(axisViewOrbitAngles(r.view, &az, &el));
+        EXPECT_EQ(az, r.az);
+        EXPECT_EQ(el, r.el);
     }
+    double az, el;
+    EXPECT_FALSE(axisViewOrbitAngles("+w", &az, &el));
 }
 
 TEST(Camera, OrthographicAxisViewPutsPixelCentresOnVoxelCentres) {

@@ -40,6 +40,11 @@ struct CameraSpec {
 
 bool isAxisView(const std::string& view);
 
+// The orbit angles (degrees) that give the same camera as an axis view, so
+// that an interaction starting from an axis view continues smoothly.
+// Returns false for a name that is not an axis view.
+bool axisViewOrbitAngles(const std::string& view, double* azimuth, double* elevation);
+
 // The camera as the renderers use it: a ray for every pixel.
 struct Camera {
     glm::dvec3 position{0.0};  // eye (perspective) or centre of the image plane (ortho)

@@ -23,17 +23,18 @@ namespace {
 struct AxisBasis {
     const char* name;
     glm::dvec3 forward, right, down;
+    double azimuth, elevation;  // the orbit that reproduces this view
 };
 
 // The axis-view table from the README: rays travel along `forward`; the
 // image's x axis grows along `right` and its y axis along `down`.
 constexpr AxisBasis kAxisViews[] = {
-    {"+z", {0, 0, 1}, {1, 0, 0}, {0, 1, 0}},
-    {"-z", {0, 0, -1}, {-1, 0, 0}, {0, 1, 0}},
-    {"+x", {1, 0, 0}, {0, 0, -1}, {0, 1, 0}},
-    {"-x", {-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
-    {"+y", {0, 1, 0}, {-1, 0, 0}, {0, 0, 1}},
-    {"-y", {0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
+    {"+z", {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, 0, 0},
+    {"-z", {0, 0, -1}, {-1, 0, 0}, {0, 1, 0}, 180, 0},
+    {"+x", {1, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90, 0},
+    {"-x", {-1, 0, 0}, {0, 0, 1}, {0, 1, 0}, -90, 0},
+    {"+y", {0, 1, 0}, {-1, 0, 0}, {0, 0, 1}, 180, 90},
+    {"-y", {0, -1, 0}, {1, 0, 0}, {0, 0, 1}, 0, -90},
 };
 
 const AxisBasis* findAxisView(const std::string& view) {
@@ -47,6 +48,13 @@ double radians(double degrees) { return degrees * (M_PI / 180.0); }
 }  // namespace
 
 bool isAxisView(const std::string& view) { return findAxisView(view) != nullptr; }
+
+bool axisViewOrbitAngles(const std::string& view, double* azimuth, double* elevation) {
+    const AxisBasis* b = findAxisView(view);
+    if (!b) return false;
+    *azimuth = b->azimuth, *elevation = b->elevation;
+    return true;
+}
 
 Camera Camera::make(const CameraSpec& spec, glm::dvec3 extent, int width, int height) {
     if (width <= 0 || height <= 0) throw Error("image size must be positive");

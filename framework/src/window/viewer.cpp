@@ -19,16 +19,6 @@
 namespace voxlab {
 namespace {
 
-// Orbit angles that reproduce each axis view (see camera.cpp), so that a
-// drag starting from an axis view continues smoothly.
-void axisViewToOrbit(const std::string& view, double* azimuth, double* elevation) {
-    struct Entry { const char* view; double az, el; };
-    static const Entry table[] = {{"+z", 0, 0},   {"+x", 90, 0},   {"-z", 180, 0},
-                                  {"-x", -90, 0}, {"-y", 0, -90},  {"+y", 180, 90}};
-    for (const Entry& e : table)
-        if (view == e.view) *azimuth = e.az, *elevation = e.el;
-}
-
 struct ViewerState {
     Scene scene;
     bool dirty = true;
@@ -129,7 +119,7 @@ void handleInput(GLFWwindow* window, ViewerState& s, RenderEngine& engine) {
     if (!down) s.dragging = false;
     if (s.dragging && (x != s.lastX || y != s.lastY)) {
         CameraSpec& c = s.scene.camera;
-        if (!c.view.empty()) axisViewToOrbit(c.view, &c.azimuth, &c.elevation), c.view.clear();
+        if (!c.view.empty()) axisViewOrbitAngles(c.view, &c.azimuth, &c.elevation), c.view.clear();
         c.azimuth += 0.4 * (x - s.lastX);
         // No clamp: the orbit passes smoothly over the poles (the image's up
         // direction turns with it), so elevation just wraps to (-180, 180].

@@ -67,8 +67,10 @@ private:
     int fboWidth_ = 0, fboHeight_ = 0;
     float valueScale_ = 1.0f, valueOffset_ = 0.0f;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_;
-    std::string tfKey_;  // serialised TF of the uploaded table
+    // The uploaded table and what it was baked from (points and value range).
     TransferFunctionTable tfTable_;
+    std::vector<ControlPoint> tfPoints_;
+    glm::dvec2 tfRange_{0.0};
 };
 
 }  // namespace voxlab

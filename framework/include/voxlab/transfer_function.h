@@ -22,6 +22,10 @@ struct ControlPoint {
     double value = 0.0;
     glm::vec3 color{1.0f};
     float alpha = 1.0f;
+
+    bool operator==(const ControlPoint& o) const {
+        return value == o.value && color == o.color && alpha == o.alpha;
+    }
 };
 
 // A baked lookup table: `size` RGBA entries; entry i holds the function at

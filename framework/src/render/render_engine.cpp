@@ -3,8 +3,6 @@
 
 #include <algorithm>
 
-#include <nlohmann/json.hpp>
-
 #include "voxlab/error.h"
 #include "voxlab_gl.h"
 
@@ -77,12 +75,11 @@ void RenderEngine::setVolume(const Volume& volume) {
 }
 
 void RenderEngine::uploadTransferFunction(const TransferFunction& tf) {
-    const std::string key = tf.toJson().dump() + "@" + std::to_string(volume_->minValue()) + "," +
-                            std::to_string(volume_->maxValue());
-    if (key == tfKey_) return;
+    const glm::dvec2 range(volume_->minValue(), volume_->maxValue());
+    if (tfTable_.size > 0 && tf.points() == tfPoints_ && range == tfRange_) return;  // still right
     // The table spans the data's value range; bake() sizes it so that linear
     // interpolation stays within half a grey level of the exact function.
-    tfTable_ = tf.bake(volume_->minValue(), volume_->maxValue());
+    tfTable_ = tf.bake(range.x, range.y);
     // Row-major in a 2D texture (see transfer_function.h); the shader
     // fetches and interpolates entries itself, so no filtering here.
     const int width = std::min(tfTable_.size, kTransferFunctionRowLength);
@@ -94,7 +91,8 @@ void RenderEngine::uploadTransferFunction(const TransferFunction& tf) {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     checkGlError("uploading the transfer function");
-    tfKey_ = key;
+    tfPoints_ = tf.points();
+    tfRange_ = range;
 }
 
 const ShaderProgram& RenderEngine::program(const Renderer& renderer) {

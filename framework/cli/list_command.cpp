@@ -16,9 +16,14 @@ int listCommand(int argc, char** argv) {
     }
     for (const auto& r : rendererRegistry().all()) {
         std::printf("%-10s %s\n", r->id().c_str(), r->description().c_str());
-        for (const ParameterSpec& p : r->parameters())
-            std::printf("  %-12s %s in [%g, %g], default %g: %s\n", p.name.c_str(), parameterTypeName(p.type),
-                        p.minValue, p.maxValue, p.defaultValue, p.description.c_str());
+        for (const ParameterSpec& p : r->parameters()) {
+            if (p.dataUnits)
+                std::printf("  %-22s %s in data units, default %g of the value range: %s\n", p.name.c_str(),
+                            parameterTypeName(p.type), p.defaultValue, p.description.c_str());
+            else
+                std::printf("  %-22s %s in [%g, %g], default %g: %s\n", p.name.c_str(), parameterTypeName(p.type),
+                            p.minValue, p.maxValue, p.defaultValue, p.description.c_str());
+        }
     }
     return 0;
 }

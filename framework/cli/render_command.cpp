@@ -49,6 +49,8 @@ int renderCommand(int argc, char** argv) {
     const std::string out = args.get("out").value_or(stem(scene.dataset) + "_" + scene.renderer + ".png");
     const Renderer& renderer = rendererRegistry().get(scene.renderer);
     renderer.resolveParameters(scene.parameters);  // report bad parameters before any heavy work
+    if (scene.cuttingPlane && scene.cuttingPlane->otherRenderer != "none")
+        rendererRegistry().get(scene.cuttingPlane->otherRenderer).resolveParameters(scene.cuttingPlane->otherParameters);
 
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();

@@ -21,11 +21,18 @@ std::vector<OptionSpec> sceneOptions() {
         {"projection", "P", "orthographic or perspective"},
         {"size", "WxH", "image size in pixels"},
         {"step", "S", "sample spacing along rays, in units of the smallest voxel spacing"},
-        {"interpolation", "I", "nearest or trilinear"},
+        {"interpolation", "I", "nearest, trilinear (in the shader) or hardware (GPU filtering)"},
         {"window", "LO,HI", "grey window in data units (default: the data's min,max)"},
         {"tf", "FILE", "1D transfer function (JSON control points)"},
         {"background", "R,G,B", "background colour, 0..1 each"},
         {"param", "NAME=VALUE", "a renderer parameter (repeatable)"},
+        {"tf2d", "FILE", "2D transfer function (JSON widgets) for the tf2d renderer"},
+        {"roi", "X0,Y0,Z0,X1,Y1,Z1", "crop to this box, in voxel coordinates (the volume is 0..dims)"},
+        {"cut-normal", "NX,NY,NZ", "cutting plane: the scene's renderer draws the side this points into"},
+        {"cut-point", "X,Y,Z", "cutting plane: a point on it, voxel coordinates (default: the centre)"},
+        {"cut-renderer", "ID|none", "cutting plane: renderer of the other side (default: none, invisible)"},
+        {"cut-tf", "FILE", "cutting plane: transfer function of the other side"},
+        {"cut-param", "NAME=VALUE", "cutting plane: a parameter of the other side's renderer (repeatable)"},
     };
 }
 
@@ -44,13 +51,35 @@ void parseSize(const std::string& text, Scene* scene) {
     }
 }
 
-void parseParam(const std::string& text, Scene* scene) {
+void parseParam(const std::string& text, const std::string& option, ParameterValues* values) {
     const std::size_t eq = text.find('=');
-    if (eq == std::string::npos || eq == 0) throw Error("option --param: expected NAME=VALUE, got '" + text + "'");
+    if (eq == std::string::npos || eq == 0)
+        throw Error("option --" + option + ": expected NAME=VALUE, got '" + text + "'");
     const std::string name = text.substr(0, eq), value = text.substr(eq + 1);
-    if (value == "true" || value == "on") scene->parameters[name] = 1.0;
-    else if (value == "false" || value == "off") scene->parameters[name] = 0.0;
-    else scene->parameters[name] = parseNumber(value, "--param " + name);
+    if (value == "true" || value == "on") (*values)[name] = 1.0;
+    else if (value == "false" || value == "off") (*values)[name] = 0.0;
+    else (*values)[name] = parseNumber(value, "--" + option + " " + name);
+}
+
+void parseCuttingPlane(const Args& args, Scene* scene) {
+    const bool any = args.has("cut-normal") || args.has("cut-point") || args.has("cut-renderer") ||
+                     args.has("cut-tf") || !args.getAll("cut-param").empty();
+    if (!any) return;
+    if (!scene->cuttingPlane && !args.has("cut-normal"))
+        throw Error("option --cut-*: the cutting plane needs --cut-normal (or a scene with \"cutting_plane\")");
+    CuttingPlane& cut = scene->cuttingPlane ? *scene->cuttingPlane : scene->cuttingPlane.emplace();
+    if (auto v = args.get("cut-normal")) {
+        const auto n = parseNumberList(*v, "--cut-normal", 3);
+        cut.normal = glm::dvec3(n[0], n[1], n[2]);
+        if (glm::length(cut.normal) <= 0.0) throw Error("option --cut-normal: must not be zero");
+    }
+    if (auto v = args.get("cut-point")) {
+        const auto p = parseNumberList(*v, "--cut-point", 3);
+        cut.point = glm::dvec3(p[0], p[1], p[2]);
+    }
+    if (auto v = args.get("cut-renderer")) cut.otherRenderer = *v;
+    if (auto v = args.get("cut-tf")) cut.otherTransferFunction = TransferFunction::load(resolveDataPath(*v));
+    for (const std::string& p : args.getAll("cut-param")) parseParam(p, "cut-param", &cut.otherParameters);
 }
 
 }  // namespace
@@ -100,7 +129,15 @@ Scene sceneFromArgs(const Args& args, const std::string& command, const Scene* b
         const auto c = parseNumberList(*v, "--background", 3);
         scene.background = glm::vec3(c[0], c[1], c[2]);
     }
-    for (const std::string& p : args.getAll("param")) parseParam(p, &scene);
+    for (const std::string& p : args.getAll("param")) parseParam(p, "param", &scene.parameters);
+    if (auto v = args.get("tf2d")) scene.transferFunction2D = TransferFunction2D::load(resolveDataPath(*v));
+    if (auto v = args.get("roi")) {
+        const auto r = parseNumberList(*v, "--roi", 6);
+        scene.roi = RegionOfInterest{{r[0], r[1], r[2]}, {r[3], r[4], r[5]}};
+        for (int k = 0; k < 3; ++k)
+            if (!(r[3 + k] > r[k])) throw Error("option --roi: X1,Y1,Z1 must be greater than X0,Y0,Z0");
+    }
+    parseCuttingPlane(args, &scene);
     if (scene.camera.fov <= 0.0 || scene.camera.fov >= 180.0) throw Error(command + ": --fov must be in (0, 180)");
     if (scene.camera.zoom <= 0.0) throw Error(command + ": --zoom must be positive");
     return scene;

@@ -3,6 +3,7 @@
 // view. The stage itself, slice_plane_hit(), is in slicer/slicer.glsl.
 #include "voxlab/ray.glsl"
 #include "voxlab/classify.glsl"
+#include "voxlab/output.glsl"
 #include "slicer/slicer.glsl"
 
 out vec4 frag_color;
@@ -10,9 +11,9 @@ out vec4 frag_color;
 void main() {
     Ray ray = camera_ray();
     vec3 p;
-    if (!slice_plane_hit(ray, p) || !inside_volume(p)) {
-        frag_color = vec4(u_background, 1.0);
+    if (!slice_plane_hit(ray, p) || !inside_region(p)) {
+        frag_color = nothing();
         return;
     }
-    frag_color = vec4(display_value(sample_volume(p)), 1.0);
+    frag_color = finish(display_value(sample_volume(p)));
 }

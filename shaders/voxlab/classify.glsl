@@ -17,7 +17,6 @@ uniform int u_has_tf;
 uniform sampler2D u_tf;
 uniform vec2 u_tf_range;
 uniform int u_tf_size;
-uniform vec3 u_background;
 
 float apply_window(float value) {
     return clamp((value - u_window.x) / (u_window.y - u_window.x), 0.0, 1.0);
@@ -40,13 +39,14 @@ float opacity_correction(float alpha, float step_units) {
     return 1.0 - pow(1.0 - clamp(alpha, 0.0, 1.0), step_units);
 }
 
-// How a single value is shown by the projection renderers (slicer, MIP):
-// grey through the window, or, when the scene has a transfer function, its
-// colour with its opacity over the background.
-vec3 display_value(float value) {
-    if (u_has_tf == 0) return vec3(apply_window(value));
+// How a single value is shown by the projection renderers (slicer, MIP,
+// ...): opaque grey through the window or, when the scene has a transfer
+// function, its colour with its opacity. The result is premultiplied
+// (rgb already times alpha), ready for finish() in voxlab/output.glsl.
+vec4 display_value(float value) {
+    if (u_has_tf == 0) return vec4(vec3(apply_window(value)), 1.0);
     vec4 c = transfer_function(value);
-    return c.rgb * c.a + u_background * (1.0 - c.a);
+    return vec4(c.rgb * c.a, c.a);
 }
 
 #endif

@@ -6,7 +6,10 @@
 //  - sample m sits at t_entry + (m + 1/2) * u_step, for m = 0, 1, ... while
 //    it is still inside the box, so a ray of length L gets
 //    floor(L / u_step + 1/2) samples;
-//  - u_step is in world units (the scene's step times the smallest spacing).
+//  - u_step is in world units (the scene's step times the smallest spacing);
+//  - the region a renderer may sample is the volume's box, cropped by the
+//    scene's region of interest (u_roi_min..u_roi_max, world units) and,
+//    while a cutting plane is drawn, by one half-space of that plane.
 #ifndef VOXLAB_RAY_GLSL
 #define VOXLAB_RAY_GLSL
 
@@ -21,6 +24,11 @@ uniform vec2 u_image_size;
 uniform int u_orthographic;
 uniform float u_step;        // world units
 uniform float u_step_units;  // the same step in units of the smallest spacing
+uniform vec3 u_roi_min;      // the region of interest (default: the box)
+uniform vec3 u_roi_max;
+uniform int u_clip_plane;    // 1: keep only dot(p - u_clip_point, u_clip_normal) >= 0
+uniform vec3 u_clip_point;
+uniform vec3 u_clip_normal;
 
 struct Ray {
     vec3 origin;
@@ -64,8 +72,20 @@ bool clip_ray(inout Ray ray, vec3 lo, vec3 hi) {
     return ray.t_exit > ray.t_entry;
 }
 
+#include "cutting_plane/cutting_plane.glsl"
+
+// Clips the ray to the region this renderer samples: the region of interest
+// (which lies inside the volume's box) and the cutting plane's half-space.
 bool clip_to_volume(inout Ray ray) {
-    return clip_ray(ray, vec3(0.0), u_volume_extent);
+    if (!clip_ray(ray, u_roi_min, u_roi_max)) return false;
+    if (u_clip_plane != 0 && !clip_to_half_space(ray, u_clip_point, u_clip_normal)) return false;
+    return true;
+}
+
+// Whether a point lies in that region (for renderers that do not march).
+bool inside_region(vec3 p) {
+    bool in_roi = all(greaterThanEqual(p, u_roi_min)) && all(lessThanEqual(p, u_roi_max));
+    return in_roi && (u_clip_plane == 0 || in_half_space(p, u_clip_point, u_clip_normal));
 }
 
 // How many samples fit between t_entry and t_exit.
@@ -76,6 +96,30 @@ int sample_count(Ray ray) {
 // The world position of sample m.
 vec3 sample_position(Ray ray, int m) {
     return ray.origin + (ray.t_entry + (float(m) + 0.5) * u_step) * ray.direction;
+}
+
+// A pseudo-random number in [0, 1) that differs from pixel to pixel and is
+// the same in every frame (a hash of the pixel's coordinates), for jitter.
+float pixel_random() {
+    uvec2 q = uvec2(gl_FragCoord.xy);
+    uint h = q.x * 1973u + q.y * 9277u + 26699u;
+    h = (h ^ (h >> 15)) * 2654435769u;
+    h ^= h >> 13;
+    h *= 1274126177u;
+    h ^= h >> 16;
+    return float(h >> 8) / 16777216.0;
+}
+
+// A hit distance t shown as grey: 1 where the ray enters the volume's
+// bounding sphere (centre c = extent/2, radius rho = |extent|/2), 0 where it
+// leaves: grey = 1 - (t - t_near) / (2 rho), t_near = dot(c - origin, d) - rho.
+// The README's conventions state the same formula, so depth images can be
+// turned back into distances.
+float depth_grey(Ray ray, float t) {
+    vec3 centre = 0.5 * u_volume_extent;
+    float radius = 0.5 * length(u_volume_extent);
+    float t_near = dot(centre - ray.origin, ray.direction) - radius;
+    return clamp(1.0 - (t - t_near) / (2.0 * radius), 0.0, 1.0);
 }
 
 #endif

@@ -3,8 +3,11 @@
 // The volume is a 3D texture over the box [0, u_volume_extent] in world
 // space (voxel (i,j,k) is centred at (i+1/2, j+1/2, k+1/2) * spacing). Values
 // come back in the data's own units: texel * u_value_scale + u_value_offset.
-// Whether sample_volume() is nearest or trilinear is set by the scene
-// ("interpolation"), through the texture's filter.
+//
+// sample_volume(p) reads between voxels as the scene's "interpolation" says
+// (u_interpolation): 0 nearest and 1 trilinear, both written out in the
+// "sampling" stage (sampling/sampling.glsl) from voxel_value(); 2 the GPU's
+// own linear filtering ("hardware").
 #ifndef VOXLAB_VOLUME_GLSL
 #define VOXLAB_VOLUME_GLSL
 
@@ -14,16 +17,28 @@ uniform vec3 u_volume_extent;
 uniform float u_value_scale;
 uniform float u_value_offset;
 uniform float u_min_spacing;
-
-// The data value at world position p.
-float sample_volume(vec3 p) {
-    return texture(u_volume, p / u_volume_extent).r * u_value_scale + u_value_offset;
-}
+uniform vec2 u_value_range;  // the volume's smallest and largest value
+uniform int u_interpolation;
 
 // The value stored at voxel (i,j,k), clamped to the grid; no filtering.
 float voxel_value(ivec3 ijk) {
     ijk = clamp(ijk, ivec3(0), u_volume_dims - 1);
     return texelFetch(u_volume, ijk, 0).r * u_value_scale + u_value_offset;
+}
+
+// World position -> continuous voxel coordinates: voxel i spans [i, i+1] on
+// each axis, so its centre is at i + 1/2.
+vec3 voxel_coordinates(vec3 p) {
+    return p / u_volume_extent * vec3(u_volume_dims);
+}
+
+#include "sampling/sampling.glsl"
+
+// The data value at world position p.
+float sample_volume(vec3 p) {
+    if (u_interpolation == 0) return sample_nearest(p);
+    if (u_interpolation == 1) return sample_trilinear(p);
+    return texture(u_volume, p / u_volume_extent).r * u_value_scale + u_value_offset;
 }
 
 bool inside_volume(vec3 p) {

@@ -7,8 +7,20 @@
 //   u_volume, u_volume_dims, u_volume_extent, u_value_scale, u_value_offset,
 //   u_min_spacing, u_cam_*, u_pixel_scale, u_image_size, u_orthographic,
 //   u_step (world units), u_step_units (in smallest spacings), u_window,
-//   u_tf, u_tf_range, u_tf_size, u_has_tf, u_background, and u_PARAM for each
-//   declared renderer parameter.
+//   u_tf, u_tf_range, u_tf_size, u_has_tf, u_background, u_value_range,
+//   u_interpolation, u_roi_min/max, u_clip_plane/point/normal, u_layer,
+//   u_gradient_volume, u_tf2d_*, and u_PARAM for each declared renderer
+//   parameter.
+//
+// A scene with a cutting plane is drawn in three passes: the scene's
+// renderer on the normal's side and the other side's renderer on the other,
+// each into a float layer (premultiplied colour and opacity), then the two
+// layers laid front over back and over the background
+// (shaders/voxlab/cut_compose.frag).
+//
+// A renderer that needs a transfer function (compositing) and a scene that
+// has none get a grey ramp over the window: opacity 0 at its low end to 0.1
+// per unit length at its high end.
 #pragma once
 
 #include <map>
@@ -40,9 +52,9 @@ public:
     // Renders `scene` (its dataset is ignored: the volume set above is used)
     // and returns the float image.
     Image render(const Scene& scene);
-    // The same into a caller's framebuffer (the viewer's window), at the
-    // scene's size, at the given viewport origin.
-    void renderTo(const Scene& scene, unsigned framebuffer, int x = 0, int y = 0);
+    // The same into a caller's framebuffer, at the scene's size, with the
+    // viewport at the framebuffer's origin.
+    void renderTo(const Scene& scene, unsigned framebuffer);
     // Renders into the engine's own float framebuffer and leaves it there
     // (the viewer blits it); offscreenFramebuffer() names it.
     void renderOffscreen(const Scene& scene);
@@ -54,23 +66,49 @@ public:
     const std::string& implementationRoot() const { return implementationRoot_; }
 
 private:
-    const ShaderProgram& program(const Renderer& renderer);
-    void draw(const Scene& scene, const Renderer& renderer, const ParameterValues& values);
-    void uploadTransferFunction(const TransferFunction& tf);
+    // One transfer-function table on the GPU and what it was baked from.
+    struct TransferFunctionSlot {
+        unsigned texture = 0;
+        TransferFunctionTable table;
+        std::vector<ControlPoint> points;
+        glm::dvec2 range{0.0};
+    };
+    // What differs between the passes of a cutting-plane view.
+    struct Pass {
+        const Renderer* renderer = nullptr;
+        ParameterValues values;
+        const TransferFunction* transferFunction = nullptr;
+        int slot = 0;             // which TransferFunctionSlot
+        bool layer = false;       // premultiplied output, no background
+        bool clip = false;        // keep dot(p - clipPoint, clipNormal) >= 0
+        glm::vec3 clipPoint{0.0f}, clipNormal{0.0f};
+    };
+
+    // The program for an entry shader with these baked constants (cached).
+    const ShaderProgram& program(const std::string& fragmentShader, const ShaderConstants& constants);
+    void setSceneUniforms(const ShaderProgram& prog, const Scene& scene) const;
+    void draw(const Scene& scene, const Pass& pass);
+    void drawCut(const Scene& scene, unsigned framebuffer);
+    void uploadTransferFunction(TransferFunctionSlot& slot, const TransferFunction& tf);
+    void uploadGradients(GradientEstimator estimator);
     void ensureTarget(int width, int height);
+    void ensureLayers(int width, int height);
 
     std::string implementationRoot_;
     ShaderLibrary library_;
     const Volume* volume_ = nullptr;
-    unsigned volumeTexture_ = 0, tfTexture_ = 0, vao_ = 0;
+    unsigned volumeTexture_ = 0, vao_ = 0;
     unsigned fbo_ = 0, colorTexture_ = 0;
     int fboWidth_ = 0, fboHeight_ = 0;
+    unsigned layerFbo_[2] = {0, 0}, layerTexture_[2] = {0, 0};
+    int layerWidth_ = 0, layerHeight_ = 0;
     float valueScale_ = 1.0f, valueOffset_ = 0.0f;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_;
-    // The uploaded table and what it was baked from (points and value range).
-    TransferFunctionTable tfTable_;
-    std::vector<ControlPoint> tfPoints_;
-    glm::dvec2 tfRange_{0.0};
+    TransferFunctionSlot tf_[2];  // the scene's, and the cutting plane's other side
+    // The gradient volume on the GPU: for which volume (by upload count) and estimator.
+    unsigned gradientTexture_ = 0;
+    std::optional<GradientEstimator> gradientEstimator_;
+    unsigned long volumeGeneration_ = 0, gradientGeneration_ = 0;
 };
 
 }  // namespace voxlab

@@ -12,9 +12,11 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "voxlab/gradients.h"
 #include "voxlab/scene.h"
 
 namespace voxlab {
@@ -25,6 +27,12 @@ enum class ParameterType { Float, Int, Bool };
 
 // One declared parameter. The command line (--param NAME=VALUE), scene files
 // ("parameters": {...}) and the viewer's panels all read these.
+//
+// A parameter in data units (an isovalue, a threshold) cannot have a fixed
+// range: a CT scan and an 8-bit volume differ by orders of magnitude. Such a
+// parameter sets `dataUnits`; its min, max and default are then fractions of
+// the volume's value range (0 = the smallest value, 1 = the largest), and
+// parametersFor() turns them into data units for one volume.
 struct ParameterSpec {
     std::string name;
     ParameterType type = ParameterType::Float;
@@ -32,6 +40,7 @@ struct ParameterSpec {
     double maxValue = 1.0;
     double defaultValue = 0.0;
     std::string description;
+    bool dataUnits = false;
 };
 
 const char* parameterTypeName(ParameterType t);
@@ -42,16 +51,32 @@ public:
     virtual std::string id() const = 0;
     virtual std::string description() const = 0;
     virtual std::vector<ParameterSpec> parameters() const { return {}; }
+    // The parameters for a volume whose values span `dataRange`: data-unit
+    // parameters get their range and default in data units.
+    std::vector<ParameterSpec> parametersFor(glm::dvec2 dataRange) const;
     // The entry fragment shader, found on the shader search path.
     virtual std::string fragmentShader() const { return "renderers/" + id() + ".frag"; }
     // Sets the renderer's own uniforms. The default sets each parameter as
     // uniform "u_NAME" (float for Float, int for Int and Bool).
     virtual void setUniforms(const ShaderProgram& program, const ParameterValues& values) const;
 
+    // Whether the renderer classifies samples with the 1D transfer function
+    // even when the scene has none (compositing cannot do without one: the
+    // engine then supplies a grey ramp over the window, see render_engine.h).
+    virtual bool needsTransferFunction() const { return false; }
+    // The gradient volume to precompute on the CPU and upload, if these
+    // parameter values ask for one (see gradients.h).
+    virtual std::optional<GradientEstimator> precomputedGradients(const ParameterValues&) const {
+        return std::nullopt;
+    }
+
     // Checks `given` against the declared parameters (unknown name, out of
     // range, not an integer, not a bool) and fills in defaults. Errors name
     // the renderer and parameter: "mip: parameter 'offset' is not declared".
-    ParameterValues resolveParameters(const ParameterValues& given) const;
+    // Without a data range, data-unit parameters are checked for their name
+    // and type only (their defaults are then meaningless).
+    ParameterValues resolveParameters(const ParameterValues& given,
+                                      std::optional<glm::dvec2> dataRange = std::nullopt) const;
 };
 
 class RendererRegistry {

@@ -1,6 +1,6 @@
 // voxlab: the built-in renderers. Each is declared here and defined in its
-// own file under framework/src/renderers/; its GLSL entry point is
-// shaders/renderers/ID.frag and its stage code is reference/ID/.
+// own file under framework/src/renderers/ (ID_renderer.cpp); its GLSL entry
+// point is shaders/renderers/ID.frag and its stage code is reference/ID/.
 #pragma once
 
 #include "voxlab/renderer.h"
@@ -19,5 +19,66 @@ public:
     std::string id() const override;
     std::string description() const override;
 };
+
+class MinipRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+};
+
+class AverageRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+};
+
+class FirstHitRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+};
+
+class SlabMipRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+};
+
+class CompositeRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    bool needsTransferFunction() const override { return true; }
+    std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const override;
+};
+
+class IsoRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const override;
+};
+
+class Tf2dRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const override;
+};
+
+// Parameters several renderers declare alike (shared_parameters.cpp).
+// Shading: shading, blinn, ka, kd, ks, shininess, light_azimuth,
+// light_elevation, min_gradient, and the gradient's sobel and
+// precomputed_gradients (see shaders/voxlab/lighting.glsl, gradients.glsl).
+std::vector<ParameterSpec> shadingParameters(bool shadingByDefault);
+// Compositing: early_termination, back_to_front, jitter.
+std::vector<ParameterSpec> compositingParameters();
+// The gradient volume that shading parameters ask for, if any.
+std::optional<GradientEstimator> gradientVolumeFor(const ParameterValues& values);
 
 }  // namespace voxlab

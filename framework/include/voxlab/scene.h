@@ -11,8 +11,18 @@
 //     "window": [0, 255],                    // grey window in data units
 //     "background": [0, 0, 0],
 //     "parameters": {"offset": 0},           // the renderer's own, see `voxlab list`
-//     "transfer_function": [ {"value": 40, "color": [1,1,1], "alpha": 0}, ... ]
+//     "transfer_function": [ {"value": 40, "color": [1,1,1], "alpha": 0}, ... ],
 //                                            // or a path to such a JSON file
+//     "tf2d": {"widgets": [...]},            // 2D transfer function (tf2d renderer),
+//                                            // or a path; see transfer_function_2d.h
+//     "roi": {"min": [0, 0, 10], "max": [256, 256, 90]},   // cropping box, voxel coordinates
+//     "cutting_plane": {                     // splits the view in two half-spaces
+//       "point": [128, 128, 64],             // voxel coordinates (default: the centre)
+//       "normal": [1, 0, 0],                 // world direction; this scene's renderer
+//                                            // draws the side it points into
+//       "other_side": {"renderer": "mip",    // or "none": the other side is invisible
+//                      "transfer_function": "tf/bonsai.json", "parameters": {}}
+//     }
 //   }
 //
 // Every key is optional except "dataset". Unknown keys and wrong types are
@@ -31,16 +41,44 @@
 
 #include "voxlab/camera.h"
 #include "voxlab/transfer_function.h"
+#include "voxlab/transfer_function_2d.h"
 
 namespace voxlab {
 
-enum class Interpolation { Nearest, Trilinear };
+// How sample_volume() reads between voxels:
+//   nearest    the voxel that contains the point;
+//   trilinear  the 8 surrounding voxels blended in the shader, in float
+//              (the "sampling" stage, reference/sampling/sampling.glsl);
+//   hardware   the GPU's own linear texture filtering (fast; on many GPUs
+//              its weights have only 8 bits).
+enum class Interpolation { Nearest, Trilinear, Hardware };
 const char* interpolationName(Interpolation i);
 Interpolation parseInterpolation(const std::string& name);  // throws voxlab::Error
 
 // A renderer parameter's value as written in a scene or on the command
 // line; the renderer's declared ParameterSpec checks and converts it.
 using ParameterValues = std::map<std::string, double>;
+
+// An axis-aligned cropping box in voxel coordinates: the volume's own box is
+// [0, dims] on each axis (voxel i spans [i, i+1]). Every renderer samples
+// only inside it.
+struct RegionOfInterest {
+    glm::dvec3 min{0.0};
+    glm::dvec3 max{0.0};
+};
+
+// A plane that splits the view. The scene's renderer, transfer function and
+// parameters draw the half-space the normal points into
+// (dot(p - point, normal) >= 0); the other half-space is drawn by
+// `otherRenderer` with its own transfer function and parameters, or not at
+// all when otherRenderer is "none".
+struct CuttingPlane {
+    std::optional<glm::dvec3> point;  // voxel coordinates; default: the volume's centre
+    glm::dvec3 normal{1.0, 0.0, 0.0};  // world direction, any length > 0
+    std::string otherRenderer = "none";
+    std::optional<TransferFunction> otherTransferFunction;
+    ParameterValues otherParameters;
+};
 
 // Limits every way of writing a scene (JSON, command line, viewer) obeys.
 constexpr int kMaxImageSize = 8192;  // pixels, per side
@@ -58,6 +96,9 @@ struct Scene {
     glm::vec3 background{0.0f};
     ParameterValues parameters;
     std::optional<TransferFunction> transferFunction;
+    std::optional<TransferFunction2D> transferFunction2D;
+    std::optional<RegionOfInterest> roi;
+    std::optional<CuttingPlane> cuttingPlane;
 
     // Parses a scene; `where` prefixes error messages (usually the path),
     // `baseDir` resolves relative paths.

@@ -39,16 +39,27 @@ struct PreprocessedShader {
     std::string mapLog(const std::string& log) const;
 };
 
+// Integer uniforms baked into a program as constants: a declaration
+// `uniform int NAME;` (or bool) whose NAME is listed becomes
+// `const int NAME = VALUE;`. The GLSL reads the same either way, but the
+// compiler folds branches on a constant away. That matters on CPU
+// rasterizers (llvmpipe runs both sides of a uniform branch), so the render
+// engine bakes the switches (interpolation, bool parameters) and keeps one
+// program per combination.
+using ShaderConstants = std::map<std::string, int>;
+
 class ShaderLibrary {
 public:
     explicit ShaderLibrary(std::vector<std::string> searchPath);
-    // The default path: [implementationRoot, <project>/shaders].
+    // The default path: [implementationRoot, <project>/reference,
+    // <project>/shaders]. A stage the implementation root does not contain
+    // (a submission of one assignment) comes from the reference solution.
     static ShaderLibrary forImplementation(const std::string& implementationRoot);
 
     const std::vector<std::string>& searchPath() const { return searchPath_; }
     // Absolute path of `name`, first match on the search path; throws when absent.
     std::string resolve(const std::string& name, const std::string& includedFrom = "") const;
-    PreprocessedShader preprocess(const std::string& name) const;
+    PreprocessedShader preprocess(const std::string& name, const ShaderConstants& constants = {}) const;
 
 private:
     std::vector<std::string> searchPath_;
@@ -57,7 +68,7 @@ private:
 class ShaderProgram {
 public:
     ShaderProgram(const ShaderLibrary& library, const std::string& vertexName,
-                  const std::string& fragmentName);
+                  const std::string& fragmentName, const ShaderConstants& constants = {});
     ~ShaderProgram();
     ShaderProgram(const ShaderProgram&) = delete;
     ShaderProgram& operator=(const ShaderProgram&) = delete;

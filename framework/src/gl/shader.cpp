@@ -2,6 +2,8 @@
 // error mapping. See shader.h.
 #include "voxlab/shader.h"
 
+#include <filesystem>
+
 #include <algorithm>
 #include <fstream>
 #include <cstring>
@@ -53,8 +55,18 @@ std::string lineDirective(int fileId, int line) {
     return "#line " + std::to_string(fileId * kLineStride + line) + "\n";
 }
 
+// `uniform int NAME;` (or bool), for baking a uniform into a constant.
+bool parseIntUniform(const std::string& line, std::string* name) {
+    static const std::regex re(R"(^\s*uniform\s+(int|bool)\s+(\w+)\s*;\s*(//.*)?$)");
+    std::smatch m;
+    if (!std::regex_match(line, m, re)) return false;
+    *name = m[2];
+    return true;
+}
+
 struct Preprocessor {
     const ShaderLibrary& lib;
+    const ShaderConstants& constants;
     PreprocessedShader out;
     std::set<std::string> included;
     std::vector<std::string> stack;
@@ -84,6 +96,9 @@ struct Preprocessor {
             if (parseInclude(line, &name)) {
                 addFile(lib.resolve(name, displayPath(path) + ":" + std::to_string(lineNo)), false);
                 out.text += lineDirective(fileId, lineNo + 1);
+            } else if (parseIntUniform(line, &name) && constants.count(name)) {
+                // Baked: same line count, so error lines still map.
+                out.text += "const int " + name + " = " + std::to_string(constants.at(name)) + ";\n";
             } else {
                 out.text += line + "\n";
             }
@@ -147,7 +162,12 @@ std::string PreprocessedShader::mapLog(const std::string& log) const {
 ShaderLibrary::ShaderLibrary(std::vector<std::string> searchPath) : searchPath_(std::move(searchPath)) {}
 
 ShaderLibrary ShaderLibrary::forImplementation(const std::string& implementationRoot) {
-    return ShaderLibrary({implementationRoot, projectRoot() + "/shaders"});
+    const std::string reference = projectRoot() + "/reference";
+    std::vector<std::string> path = {implementationRoot};
+    if (std::filesystem::path(implementationRoot).lexically_normal() != std::filesystem::path(reference).lexically_normal())
+        path.push_back(reference);
+    path.push_back(projectRoot() + "/shaders");
+    return ShaderLibrary(path);
 }
 
 std::string ShaderLibrary::resolve(const std::string& name, const std::string& includedFrom) const {
@@ -161,16 +181,16 @@ std::string ShaderLibrary::resolve(const std::string& name, const std::string& i
                       "' not found (searched: " + searched + ")");
 }
 
-PreprocessedShader ShaderLibrary::preprocess(const std::string& name) const {
-    Preprocessor p{*this, {}, {}, {}};
+PreprocessedShader ShaderLibrary::preprocess(const std::string& name, const ShaderConstants& constants) const {
+    Preprocessor p{*this, constants, {}, {}, {}};
     p.addFile(resolve(name), true);
     return p.out;
 }
 
 ShaderProgram::ShaderProgram(const ShaderLibrary& library, const std::string& vertexName,
-                             const std::string& fragmentName) {
-    const PreprocessedShader vs = library.preprocess(vertexName);
-    const PreprocessedShader fs = library.preprocess(fragmentName);
+                             const std::string& fragmentName, const ShaderConstants& constants) {
+    const PreprocessedShader vs = library.preprocess(vertexName, constants);
+    const PreprocessedShader fs = library.preprocess(fragmentName, constants);
     files_ = vs.files;
     files_.insert(files_.end(), fs.files.begin(), fs.files.end());
     const GLuint v = compileStage(GL_VERTEX_SHADER, vs);

@@ -12,6 +12,31 @@ namespace {
 // Texture units used by the framework's GLSL libraries.
 constexpr int kVolumeUnit = 0;
 constexpr int kTransferFunctionUnit = 1;
+constexpr int kGradientUnit = 2;
+constexpr int kLayerUnit = 3;  // and kLayerUnit + 1 (cut_compose.frag)
+
+// The transfer function used when a renderer needs one and the scene has none.
+TransferFunction fallbackTransferFunction(glm::dvec2 window) {
+    return TransferFunction({{window.x, glm::vec3(1.0f), 0.0f}, {window.y, glm::vec3(1.0f), 0.1f}});
+}
+
+void createFloatTarget(unsigned* fbo, unsigned* texture, int width, int height) {
+    if (!*fbo) {
+        glGenFramebuffers(1, fbo);
+        glGenTextures(1, texture);
+    }
+    // A float target: the image is read back unrounded, and the one rounding
+    // to 8 bits happens on the CPU by the README's rule.
+    glBindTexture(GL_TEXTURE_2D, *texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *texture, 0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw Error("OpenGL: the float framebuffer (" + std::to_string(width) + "x" + std::to_string(height) +
+                    ") is not complete");
+}
 
 }  // namespace
 
@@ -20,7 +45,8 @@ RenderEngine::RenderEngine(std::string implementationRoot)
       library_(ShaderLibrary::forImplementation(implementationRoot_)) {
     glGenVertexArrays(1, &vao_);  // core profile: drawing needs a bound VAO
     glGenTextures(1, &volumeTexture_);
-    glGenTextures(1, &tfTexture_);
+    glGenTextures(1, &gradientTexture_);
+    for (TransferFunctionSlot& slot : tf_) glGenTextures(1, &slot.texture);
     checkGlError("creating the render engine");
 }
 
@@ -28,9 +54,14 @@ RenderEngine::~RenderEngine() {
     programs_.clear();
     glDeleteVertexArrays(1, &vao_);
     glDeleteTextures(1, &volumeTexture_);
-    glDeleteTextures(1, &tfTexture_);
+    glDeleteTextures(1, &gradientTexture_);
+    for (TransferFunctionSlot& slot : tf_) glDeleteTextures(1, &slot.texture);
     if (fbo_) glDeleteFramebuffers(1, &fbo_);
     if (colorTexture_) glDeleteTextures(1, &colorTexture_);
+    for (int i = 0; i < 2; ++i) {
+        if (layerFbo_[i]) glDeleteFramebuffers(1, &layerFbo_[i]);
+        if (layerTexture_[i]) glDeleteTextures(1, &layerTexture_[i]);
+    }
 }
 
 void RenderEngine::setVolume(const Volume& volume) {
@@ -72,35 +103,55 @@ void RenderEngine::setVolume(const Volume& volume) {
     glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
     checkGlError("uploading the volume texture");
     volume_ = &volume;
+    ++volumeGeneration_;
+    for (TransferFunctionSlot& slot : tf_) slot.table.size = 0;  // the value range may differ
 }
 
-void RenderEngine::uploadTransferFunction(const TransferFunction& tf) {
+void RenderEngine::uploadTransferFunction(TransferFunctionSlot& slot, const TransferFunction& tf) {
     const glm::dvec2 range(volume_->minValue(), volume_->maxValue());
-    if (tfTable_.size > 0 && tf.points() == tfPoints_ && range == tfRange_) return;  // still right
+    if (slot.table.size > 0 && tf.points() == slot.points && range == slot.range) return;  // still right
     // The table spans the data's value range; bake() sizes it so that linear
     // interpolation stays within half a grey level of the exact function.
-    tfTable_ = tf.bake(range.x, range.y);
+    slot.table = tf.bake(range.x, range.y);
     // Row-major in a 2D texture (see transfer_function.h); the shader
     // fetches and interpolates entries itself, so no filtering here.
-    const int width = std::min(tfTable_.size, kTransferFunctionRowLength);
-    const int rows = (tfTable_.size + width - 1) / width;
-    std::vector<glm::vec4> texels(std::size_t(width) * rows, tfTable_.rgba.back());
-    std::copy(tfTable_.rgba.begin(), tfTable_.rgba.end(), texels.begin());
-    glBindTexture(GL_TEXTURE_2D, tfTexture_);
+    const int width = std::min(slot.table.size, kTransferFunctionRowLength);
+    const int rows = (slot.table.size + width - 1) / width;
+    std::vector<glm::vec4> texels(std::size_t(width) * rows, slot.table.rgba.back());
+    std::copy(slot.table.rgba.begin(), slot.table.rgba.end(), texels.begin());
+    glBindTexture(GL_TEXTURE_2D, slot.texture);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, rows, 0, GL_RGBA, GL_FLOAT, texels.data());
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     checkGlError("uploading the transfer function");
-    tfPoints_ = tf.points();
-    tfRange_ = range;
+    slot.points = tf.points();
+    slot.range = range;
 }
 
-const ShaderProgram& RenderEngine::program(const Renderer& renderer) {
-    auto it = programs_.find(renderer.id());
+void RenderEngine::uploadGradients(GradientEstimator estimator) {
+    if (gradientGeneration_ == volumeGeneration_ && gradientEstimator_ == estimator) return;
+    const std::vector<glm::vec3> gradients = computeGradients(*volume_, estimator);
+    const glm::ivec3 d = volume_->dims();
+    glBindTexture(GL_TEXTURE_3D, gradientTexture_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_RGB32F, d.x, d.y, d.z, 0, GL_RGB, GL_FLOAT, gradients.data());
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+    checkGlError("uploading the gradient volume");
+    gradientEstimator_ = estimator;
+    gradientGeneration_ = volumeGeneration_;
+}
+
+const ShaderProgram& RenderEngine::program(const std::string& fragmentShader, const ShaderConstants& constants) {
+    std::string key = fragmentShader;
+    for (const auto& [name, value] : constants) key += " " + name + "=" + std::to_string(value);
+    auto it = programs_.find(key);
     if (it == programs_.end())
         it = programs_
-                 .emplace(renderer.id(), std::make_unique<ShaderProgram>(library_, "voxlab/fullscreen.vert",
-                                                                          renderer.fragmentShader()))
+                 .emplace(key, std::make_unique<ShaderProgram>(library_, "voxlab/fullscreen.vert", fragmentShader,
+                                                               constants))
                  .first;
     return *it->second;
 }
@@ -109,40 +160,28 @@ void RenderEngine::reloadShaders() { programs_.clear(); }
 
 void RenderEngine::ensureTarget(int width, int height) {
     if (fbo_ && width == fboWidth_ && height == fboHeight_) return;
-    if (!fbo_) {
-        glGenFramebuffers(1, &fbo_);
-        glGenTextures(1, &colorTexture_);
-    }
-    // A float target: the image is read back unrounded, and the one rounding
-    // to 8 bits happens on the CPU by the README's rule.
-    glBindTexture(GL_TEXTURE_2D, colorTexture_);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colorTexture_, 0);
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw Error("OpenGL: the float framebuffer (" + std::to_string(width) + "x" + std::to_string(height) +
-                    ") is not complete");
+    createFloatTarget(&fbo_, &colorTexture_, width, height);
     fboWidth_ = width, fboHeight_ = height;
 }
 
-void RenderEngine::draw(const Scene& scene, const Renderer& renderer, const ParameterValues& values) {
-    const Volume& vol = *volume_;
-    const ShaderProgram& prog = program(renderer);
-    prog.use();
+void RenderEngine::ensureLayers(int width, int height) {
+    if (layerFbo_[0] && width == layerWidth_ && height == layerHeight_) return;
+    for (int i = 0; i < 2; ++i) createFloatTarget(&layerFbo_[i], &layerTexture_[i], width, height);
+    layerWidth_ = width, layerHeight_ = height;
+}
 
-    glActiveTexture(GL_TEXTURE0 + kVolumeUnit);
-    glBindTexture(GL_TEXTURE_3D, volumeTexture_);
-    const GLint filter = scene.interpolation == Interpolation::Nearest ? GL_NEAREST : GL_LINEAR;
-    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, filter);
-    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, filter);
+// Uniforms that depend on the scene and the volume only: the volume, the
+// camera, sampling, the region of interest.
+void RenderEngine::setSceneUniforms(const ShaderProgram& prog, const Scene& scene) const {
+    const Volume& vol = *volume_;
     prog.set("u_volume", kVolumeUnit);
     prog.set("u_volume_dims", vol.dims());
     prog.set("u_volume_extent", glm::vec3(vol.extent()));
     prog.set("u_value_scale", valueScale_);
     prog.set("u_value_offset", valueOffset_);
+    prog.set("u_value_range", glm::vec2(vol.minValue(), vol.maxValue()));
     prog.set("u_min_spacing", float(vol.minSpacing()));
+    prog.set("u_interpolation", int(scene.interpolation));
 
     const Camera cam = Camera::make(scene.camera, vol.extent(), scene.width, scene.height);
     prog.set("u_cam_position", glm::vec3(cam.position));
@@ -159,17 +198,76 @@ void RenderEngine::draw(const Scene& scene, const Renderer& renderer, const Para
     prog.set("u_window", glm::vec2(window));
     prog.set("u_background", scene.background);
 
-    prog.set("u_has_tf", scene.transferFunction ? 1 : 0);
-    if (scene.transferFunction) {
-        uploadTransferFunction(*scene.transferFunction);
-        prog.set("u_tf_range", glm::vec2(float(tfTable_.lo), float(tfTable_.hi)));
-        prog.set("u_tf_size", tfTable_.size);
+    // The region of interest, in world units, never larger than the box.
+    glm::dvec3 lo(0.0), hi = vol.extent();
+    if (scene.roi) {
+        lo = glm::max(lo, scene.roi->min * vol.spacing());
+        hi = glm::min(hi, scene.roi->max * vol.spacing());
+    }
+    prog.set("u_roi_min", glm::vec3(lo));
+    prog.set("u_roi_max", glm::vec3(hi));
+}
+
+void RenderEngine::draw(const Scene& scene, const Pass& pass) {
+    const Renderer& renderer = *pass.renderer;
+    std::optional<TransferFunction> fallback;
+    const TransferFunction* tf = pass.transferFunction;
+    if (!tf && renderer.needsTransferFunction()) {
+        fallback = fallbackTransferFunction(
+            scene.window.value_or(glm::dvec2(volume_->minValue(), volume_->maxValue())));
+        tf = &*fallback;
+    }
+    // Switches are baked into the program (see ShaderConstants): the
+    // interpolation, whether there is a transfer function, the pass's kind,
+    // and every bool parameter.
+    ShaderConstants constants = {{"u_interpolation", int(scene.interpolation)},
+                                 {"u_has_tf", tf ? 1 : 0},
+                                 {"u_layer", pass.layer ? 1 : 0},
+                                 {"u_clip_plane", pass.clip ? 1 : 0}};
+    for (const ParameterSpec& p : renderer.parameters())
+        if (p.type == ParameterType::Bool) constants["u_" + p.name] = pass.values.at(p.name) != 0.0 ? 1 : 0;
+    const ShaderProgram& prog = program(renderer.fragmentShader(), constants);
+    prog.use();
+
+    glActiveTexture(GL_TEXTURE0 + kVolumeUnit);
+    glBindTexture(GL_TEXTURE_3D, volumeTexture_);
+    const GLint filter = scene.interpolation == Interpolation::Hardware ? GL_LINEAR : GL_NEAREST;
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, filter);
+    setSceneUniforms(prog, scene);
+    prog.set("u_clip_point", pass.clipPoint);
+    prog.set("u_clip_normal", pass.clipNormal);
+
+    TransferFunctionSlot& slot = tf_[pass.slot];
+    if (tf) {
+        uploadTransferFunction(slot, *tf);
+        prog.set("u_tf_range", glm::vec2(float(slot.table.lo), float(slot.table.hi)));
+        prog.set("u_tf_size", slot.table.size);
     }
     glActiveTexture(GL_TEXTURE0 + kTransferFunctionUnit);
-    glBindTexture(GL_TEXTURE_2D, tfTexture_);
+    glBindTexture(GL_TEXTURE_2D, slot.texture);
     prog.set("u_tf", kTransferFunctionUnit);
 
-    renderer.setUniforms(prog, values);
+    if (const auto estimator = renderer.precomputedGradients(pass.values)) uploadGradients(*estimator);
+    glActiveTexture(GL_TEXTURE0 + kGradientUnit);
+    glBindTexture(GL_TEXTURE_3D, gradientTexture_);
+    prog.set("u_gradient_volume", kGradientUnit);
+
+    const std::vector<Tf2dWidget> widgets =
+        scene.transferFunction2D ? scene.transferFunction2D->widgets() : std::vector<Tf2dWidget>{};
+    prog.set("u_tf2d_count", int(widgets.size()));
+    for (std::size_t i = 0; i < widgets.size(); ++i) {
+        const Tf2dWidget& w = widgets[i];
+        const std::string index = "[" + std::to_string(i) + "]";
+        const bool box = w.kind == Tf2dWidget::Kind::Box;
+        prog.set(("u_tf2d_kind" + index).c_str(), box ? 1 : 0);
+        prog.set(("u_tf2d_shape" + index).c_str(),
+                 box ? glm::vec4(w.valueRange.x, w.valueRange.y, w.gradientRange.x, w.gradientRange.y)
+                     : glm::vec4(w.valueRange.x, w.radius, 0.0, 0.0));
+        prog.set(("u_tf2d_color" + index).c_str(), glm::vec4(w.color, w.alpha));
+    }
+
+    renderer.setUniforms(prog, pass.values);
 
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
@@ -178,13 +276,70 @@ void RenderEngine::draw(const Scene& scene, const Renderer& renderer, const Para
     checkGlError(("drawing with renderer '" + renderer.id() + "'").c_str());
 }
 
-void RenderEngine::renderTo(const Scene& scene, unsigned framebuffer, int x, int y) {
-    if (!volume_) throw Error("render: no volume has been set");
-    const Renderer& renderer = rendererRegistry().get(scene.renderer);
-    const ParameterValues values = renderer.resolveParameters(scene.parameters);
+void RenderEngine::drawCut(const Scene& scene, unsigned framebuffer) {
+    const CuttingPlane& cut = *scene.cuttingPlane;
+    const Volume& vol = *volume_;
+    const glm::dvec2 range(vol.minValue(), vol.maxValue());
+    const glm::vec3 point(cut.point.value_or(glm::dvec3(vol.dims()) * 0.5) * vol.spacing());
+    const glm::vec3 normal(glm::normalize(cut.normal));
+    ensureLayers(scene.width, scene.height);
+    glViewport(0, 0, scene.width, scene.height);
+
+    Pass positive;
+    positive.renderer = &rendererRegistry().get(scene.renderer);
+    positive.values = positive.renderer->resolveParameters(scene.parameters, range);
+    positive.transferFunction = scene.transferFunction ? &*scene.transferFunction : nullptr;
+    positive.layer = positive.clip = true;
+    positive.clipPoint = point, positive.clipNormal = normal;
+    glBindFramebuffer(GL_FRAMEBUFFER, layerFbo_[0]);
+    draw(scene, positive);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, layerFbo_[1]);
+    if (cut.otherRenderer == "none") {
+        glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+    } else {
+        Pass negative = positive;
+        negative.renderer = &rendererRegistry().get(cut.otherRenderer);
+        negative.values = negative.renderer->resolveParameters(cut.otherParameters, range);
+        negative.transferFunction = cut.otherTransferFunction ? &*cut.otherTransferFunction : nullptr;
+        negative.slot = 1;
+        negative.clipNormal = -normal;
+        draw(scene, negative);
+    }
+
+    const ShaderProgram& compose = program("voxlab/cut_compose.frag", {});
+    compose.use();
+    setSceneUniforms(compose, scene);
+    compose.set("u_clip_point", point);
+    compose.set("u_clip_normal", normal);
+    for (int i = 0; i < 2; ++i) {
+        glActiveTexture(GL_TEXTURE0 + kLayerUnit + i);
+        glBindTexture(GL_TEXTURE_2D, layerTexture_[i]);
+    }
+    compose.set("u_layer_positive", kLayerUnit);
+    compose.set("u_layer_negative", kLayerUnit + 1);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    glViewport(x, y, scene.width, scene.height);
-    draw(scene, renderer, values);
+    glViewport(0, 0, scene.width, scene.height);
+    glBindVertexArray(vao_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    checkGlError("composing the cutting plane's halves");
+}
+
+void RenderEngine::renderTo(const Scene& scene, unsigned framebuffer) {
+    if (!volume_) throw Error("render: no volume has been set");
+    if (scene.cuttingPlane) {
+        drawCut(scene, framebuffer);
+        return;
+    }
+    Pass pass;
+    pass.renderer = &rendererRegistry().get(scene.renderer);
+    pass.values = pass.renderer->resolveParameters(scene.parameters,
+                                                   glm::dvec2(volume_->minValue(), volume_->maxValue()));
+    pass.transferFunction = scene.transferFunction ? &*scene.transferFunction : nullptr;
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glViewport(0, 0, scene.width, scene.height);
+    draw(scene, pass);
 }
 
 void RenderEngine::renderOffscreen(const Scene& scene) {

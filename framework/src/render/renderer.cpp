@@ -2,6 +2,7 @@
 #include "voxlab/renderer.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "voxlab/error.h"
 #include "voxlab/shader.h"
@@ -28,8 +29,21 @@ void Renderer::setUniforms(const ShaderProgram& program, const ParameterValues& 
     }
 }
 
-ParameterValues Renderer::resolveParameters(const ParameterValues& given) const {
-    const std::vector<ParameterSpec> specs = parameters();
+std::vector<ParameterSpec> Renderer::parametersFor(glm::dvec2 dataRange) const {
+    std::vector<ParameterSpec> specs = parameters();
+    for (ParameterSpec& p : specs) {
+        if (!p.dataUnits) continue;
+        const auto toData = [&](double f) { return dataRange.x + f * (dataRange.y - dataRange.x); };
+        p.minValue = toData(p.minValue);
+        p.maxValue = toData(p.maxValue);
+        p.defaultValue = toData(p.defaultValue);
+    }
+    return specs;
+}
+
+ParameterValues Renderer::resolveParameters(const ParameterValues& given,
+                                            std::optional<glm::dvec2> dataRange) const {
+    const std::vector<ParameterSpec> specs = dataRange ? parametersFor(*dataRange) : parameters();
     ParameterValues out;
     for (const ParameterSpec& p : specs) out[p.name] = p.defaultValue;
     for (const auto& [name, value] : given) {
@@ -48,9 +62,15 @@ ParameterValues Renderer::resolveParameters(const ParameterValues& given) const 
             throw Error(where + " is a bool (0/1, true/false)");
         if (spec->type == ParameterType::Int && value != std::floor(value))
             throw Error(where + " must be an integer");
-        if (value < spec->minValue || value > spec->maxValue)
-            throw Error(where + " = " + std::to_string(value) + " is outside [" +
-                        std::to_string(spec->minValue) + ", " + std::to_string(spec->maxValue) + "]");
+        if (spec->dataUnits && !dataRange) {
+            out[name] = value;
+            continue;
+        }
+        if (value < spec->minValue || value > spec->maxValue) {
+            char msg[160];
+            std::snprintf(msg, sizeof msg, " = %g is outside [%g, %g]", value, spec->minValue, spec->maxValue);
+            throw Error(where + msg);
+        }
         out[name] = value;
     }
     return out;

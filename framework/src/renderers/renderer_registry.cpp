@@ -10,6 +10,13 @@ const RendererRegistry& rendererRegistry() {
         RendererRegistry r;
         r.add<SlicerRenderer>();
         r.add<MipRenderer>();
+        r.add<MinipRenderer>();
+        r.add<AverageRenderer>();
+        r.add<FirstHitRenderer>();
+        r.add<SlabMipRenderer>();
+        r.add<CompositeRenderer>();
+        r.add<IsoRenderer>();
+        r.add<Tf2dRenderer>();
         return r;
     }();
     return registry;

@@ -18,13 +18,18 @@
 namespace voxlab {
 
 const char* interpolationName(Interpolation i) {
-    return i == Interpolation::Nearest ? "nearest" : "trilinear";
+    switch (i) {
+        case Interpolation::Nearest: return "nearest";
+        case Interpolation::Trilinear: return "trilinear";
+        case Interpolation::Hardware: return "hardware";
+    }
+    return "?";
 }
 
 Interpolation parseInterpolation(const std::string& name) {
-    if (name == "nearest") return Interpolation::Nearest;
-    if (name == "trilinear") return Interpolation::Trilinear;
-    throw Error("unknown interpolation '" + name + "' (expected nearest or trilinear)");
+    for (Interpolation i : {Interpolation::Nearest, Interpolation::Trilinear, Interpolation::Hardware})
+        if (name == interpolationName(i)) return i;
+    throw Error("unknown interpolation '" + name + "' (expected nearest, trilinear or hardware)");
 }
 
 namespace {
@@ -70,6 +75,11 @@ private:
     }
 
     void camera(const json& j, CameraSpec* cam) const;
+    glm::dvec3 vec3(const json& j, const std::string& key) const;
+    ParameterValues parameters(const json& j, const std::string& key) const;
+    TransferFunction transferFunction(const json& j, const std::string& key) const;
+    RegionOfInterest roi(const json& j) const;
+    CuttingPlane cuttingPlane(const json& j) const;
 
     std::string where_, baseDir_;
 };
@@ -103,10 +113,63 @@ void Parser::camera(const json& j, CameraSpec* cam) const {
     }
 }
 
+glm::dvec3 Parser::vec3(const json& j, const std::string& key) const {
+    if (!j.is_array() || j.size() != 3) fail(key, "expected [x, y, z]");
+    return {number(j[0], key + "[0]"), number(j[1], key + "[1]"), number(j[2], key + "[2]")};
+}
+
+ParameterValues Parser::parameters(const json& params, const std::string& key) const {
+    if (!params.is_object()) fail(key, "expected an object {\"name\": value}");
+    ParameterValues out;
+    for (const auto& item : params.items()) {
+        if (item.value().is_boolean()) out[item.key()] = item.value().get<bool>() ? 1.0 : 0.0;
+        else if (item.value().is_number() && std::isfinite(item.value().get<double>()))
+            out[item.key()] = item.value().get<double>();
+        else fail(key + "." + item.key(), "expected a number or true/false");
+    }
+    return out;
+}
+
+TransferFunction Parser::transferFunction(const json& tf, const std::string& key) const {
+    if (!tf.is_string()) return TransferFunction::fromJson(tf, where_, key);
+    const std::string name = tf.get<std::string>();
+    return located(key, [&] { return TransferFunction::load(resolveDataPath(name, baseDir_)); });
+}
+
+RegionOfInterest Parser::roi(const json& j) const {
+    if (!j.is_object()) fail("roi", "expected an object {\"min\": [x,y,z], \"max\": [x,y,z]}");
+    onlyKeys(j, "roi", {"min", "max"});
+    if (!j.contains("min") || !j.contains("max")) fail("roi", "needs both \"min\" and \"max\"");
+    RegionOfInterest r{vec3(j["min"], "roi.min"), vec3(j["max"], "roi.max")};
+    for (int k = 0; k < 3; ++k)
+        if (!(r.max[k] > r.min[k])) fail("roi", "max must be greater than min on every axis");
+    return r;
+}
+
+CuttingPlane Parser::cuttingPlane(const json& j) const {
+    if (!j.is_object()) fail("cutting_plane", "expected an object {\"point\", \"normal\", \"other_side\"}");
+    onlyKeys(j, "cutting_plane", {"point", "normal", "other_side"});
+    CuttingPlane c;
+    if (j.contains("point")) c.point = vec3(j["point"], "cutting_plane.point");
+    if (j.contains("normal")) c.normal = vec3(j["normal"], "cutting_plane.normal");
+    if (glm::length(c.normal) <= 0.0) fail("cutting_plane.normal", "must not be zero");
+    if (j.contains("other_side")) {
+        const json& o = j["other_side"];
+        const std::string key = "cutting_plane.other_side";
+        if (!o.is_object()) fail(key, "expected an object {\"renderer\", \"transfer_function\", \"parameters\"}");
+        onlyKeys(o, key, {"renderer", "transfer_function", "parameters"});
+        if (o.contains("renderer")) c.otherRenderer = string(o["renderer"], key + ".renderer");
+        if (o.contains("transfer_function"))
+            c.otherTransferFunction = transferFunction(o["transfer_function"], key + ".transfer_function");
+        if (o.contains("parameters")) c.otherParameters = parameters(o["parameters"], key + ".parameters");
+    }
+    return c;
+}
+
 Scene Parser::parse(const json& j) const {
     if (!j.is_object()) throw Error((where_.empty() ? "" : where_ + ": ") + "expected a JSON object");
     onlyKeys(j, "", {"dataset", "renderer", "camera", "projection", "size", "sampling", "window",
-                     "background", "parameters", "transfer_function"});
+                     "background", "parameters", "transfer_function", "tf2d", "roi", "cutting_plane"});
     Scene s;
 
     if (!j.contains("dataset")) fail("dataset", "missing (required)");
@@ -173,29 +236,20 @@ Scene Parser::parse(const json& j) const {
         }
     }
 
-    if (j.contains("parameters")) {
-        const json& params = j["parameters"];
-        if (!params.is_object()) fail("parameters", "expected an object {\"name\": value}");
-        for (const auto& item : params.items()) {
-            const std::string key = "parameters." + item.key();
-            if (item.value().is_boolean()) s.parameters[item.key()] = item.value().get<bool>() ? 1.0 : 0.0;
-            else if (item.value().is_number() && std::isfinite(item.value().get<double>()))
-                s.parameters[item.key()] = item.value().get<double>();
-            else fail(key, "expected a number or true/false");
-        }
-    }
-
-    if (j.contains("transfer_function")) {
-        const json& tf = j["transfer_function"];
-        if (tf.is_string()) {
-            const std::string name = tf.get<std::string>();
-            s.transferFunction = located("transfer_function", [&] {
-                return TransferFunction::load(resolveDataPath(name, baseDir_));
-            });
+    if (j.contains("parameters")) s.parameters = parameters(j["parameters"], "parameters");
+    if (j.contains("transfer_function")) s.transferFunction = transferFunction(j["transfer_function"], "transfer_function");
+    if (j.contains("tf2d")) {
+        const json& t = j["tf2d"];
+        if (t.is_string()) {
+            const std::string name = t.get<std::string>();
+            s.transferFunction2D =
+                located("tf2d", [&] { return TransferFunction2D::load(resolveDataPath(name, baseDir_)); });
         } else {
-            s.transferFunction = TransferFunction::fromJson(tf, where_, "transfer_function");
+            s.transferFunction2D = TransferFunction2D::fromJson(t, where_, "tf2d");
         }
     }
+    if (j.contains("roi")) s.roi = roi(j["roi"]);
+    if (j.contains("cutting_plane")) s.cuttingPlane = cuttingPlane(j["cutting_plane"]);
     return s;
 }
 
@@ -230,6 +284,18 @@ json Scene::toJson() const {
     j["parameters"] = json::object();
     for (const auto& [name, value] : parameters) j["parameters"][name] = value;
     if (transferFunction) j["transfer_function"] = transferFunction->toJson();
+    if (transferFunction2D) j["tf2d"] = transferFunction2D->toJson();
+    if (roi) j["roi"] = {{"min", {roi->min.x, roi->min.y, roi->min.z}}, {"max", {roi->max.x, roi->max.y, roi->max.z}}};
+    if (cuttingPlane) {
+        const CuttingPlane& c = *cuttingPlane;
+        json cut = {{"normal", {c.normal.x, c.normal.y, c.normal.z}}};
+        if (c.point) cut["point"] = {c.point->x, c.point->y, c.point->z};
+        json other = {{"renderer", c.otherRenderer}, {"parameters", json::object()}};
+        for (const auto& [name, value] : c.otherParameters) other["parameters"][name] = value;
+        if (c.otherTransferFunction) other["transfer_function"] = c.otherTransferFunction->toJson();
+        cut["other_side"] = other;
+        j["cutting_plane"] = cut;
+    }
     return j;
 }
 

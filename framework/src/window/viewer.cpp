@@ -50,7 +50,7 @@ void drawPanel(ViewerState& s, RenderEngine& engine, const Volume& volume) {
     }
     // One widget per declared parameter: the panel is generated, never hand-made.
     const Renderer& renderer = rendererRegistry().get(s.scene.renderer);
-    for (const ParameterSpec& p : renderer.parameters()) {
+    for (const ParameterSpec& p : renderer.parametersFor(glm::dvec2(volume.minValue(), volume.maxValue()))) {
         ImGui::PushID(p.name.c_str());
         double& value = s.scene.parameters.try_emplace(p.name, p.defaultValue).first->second;
         if (p.type == ParameterType::Bool) {
@@ -61,7 +61,8 @@ void drawPanel(ViewerState& s, RenderEngine& engine, const Volume& volume) {
             if (ImGui::SliderInt(p.name.c_str(), &i, int(p.minValue), int(p.maxValue))) value = i, s.dirty = true;
         } else {
             float f = float(value);
-            const float lo = float(std::max(p.minValue, -512.0)), hi = float(std::min(p.maxValue, 512.0));
+            const double limit = p.dataUnits ? 1e30 : 512.0;
+            const float lo = float(std::max(p.minValue, -limit)), hi = float(std::min(p.maxValue, limit));
             if (ImGui::SliderFloat(p.name.c_str(), &f, lo, hi)) value = f, s.dirty = true;
         }
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.description.c_str());
@@ -72,9 +73,9 @@ void drawPanel(ViewerState& s, RenderEngine& engine, const Volume& volume) {
     float step = float(s.scene.step);
     if (ImGui::SliderFloat("step", &step, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
         s.scene.step = step, s.dirty = true;
-    int interp = s.scene.interpolation == Interpolation::Nearest ? 0 : 1;
-    if (ImGui::Combo("interpolation", &interp, "nearest\0trilinear\0"))
-        s.scene.interpolation = interp == 0 ? Interpolation::Nearest : Interpolation::Trilinear, s.dirty = true;
+    int interp = int(s.scene.interpolation);
+    if (ImGui::Combo("interpolation", &interp, "nearest\0trilinear\0hardware\0"))
+        s.scene.interpolation = Interpolation(interp), s.dirty = true;
     int proj = s.scene.camera.projection == Projection::Orthographic ? 0 : 1;
     if (ImGui::Combo("projection", &proj, "orthographic\0perspective\0"))
         s.scene.camera.projection = proj == 0 ? Projection::Orthographic : Projection::Perspective, s.dirty = true;

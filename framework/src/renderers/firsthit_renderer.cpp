@@ -1,0 +1,20 @@
+// voxlab renderer "firsthit": closest-vessel projection.
+#include "voxlab/renderers.h"
+
+namespace voxlab {
+
+std::string FirstHitRenderer::id() const { return "firsthit"; }
+
+std::string FirstHitRenderer::description() const {
+    return "first hit: the first sample at or above a threshold, by its value or its depth";
+}
+
+std::vector<ParameterSpec> FirstHitRenderer::parameters() const {
+    ParameterSpec threshold{"threshold", ParameterType::Float, 0.0, 1.0, 0.5,
+                            "the value a sample must reach (data units; default: mid-range)"};
+    threshold.dataUnits = true;
+    return {threshold,
+            {"depth", ParameterType::Bool, 0, 1, 0, "show the hit's depth (near white, far black) instead of its value"}};
+}
+
+}  // namespace voxlab

@@ -1,0 +1,32 @@
+// voxlab renderer "iso": isosurface ray casting with bisection refinement.
+#include "voxlab/renderers.h"
+
+namespace voxlab {
+
+std::string IsoRenderer::id() const { return "iso"; }
+
+std::string IsoRenderer::description() const {
+    return "isosurface: the first crossing of an isovalue, refined by bisection and shaded";
+}
+
+std::vector<ParameterSpec> IsoRenderer::parameters() const {
+    using T = ParameterType;
+    ParameterSpec isovalue{"isovalue", T::Float, 0.0, 1.0, 0.5, "the surface's value (data units; default: mid-range)"};
+    isovalue.dataUnits = true;
+    std::vector<ParameterSpec> p = {
+        isovalue,
+        {"refinement_steps", T::Int, 0, 32, 8, "bisection steps between the two samples around the crossing"},
+        {"color_r", T::Float, 0, 1, 0.9, "surface colour, red"},
+        {"color_g", T::Float, 0, 1, 0.85, "surface colour, green"},
+        {"color_b", T::Float, 0, 1, 0.75, "surface colour, blue"},
+        {"depth", T::Bool, 0, 1, 0, "show the hit's depth (near white, far black) instead of the shaded colour"},
+    };
+    for (ParameterSpec& s : shadingParameters(true)) p.push_back(s);
+    return p;
+}
+
+std::optional<GradientEstimator> IsoRenderer::precomputedGradients(const ParameterValues& values) const {
+    return gradientVolumeFor(values);
+}
+
+}  // namespace voxlab

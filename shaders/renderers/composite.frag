@@ -1,0 +1,31 @@
+#version 330 core
+// Renderer "composite": direct volume rendering with the 1D transfer
+// function. The stages are the compositing loops and the classification in
+// composite/composite.glsl; shading is the gradient and shading stages.
+#include "voxlab/ray.glsl"
+#include "voxlab/classify.glsl"
+#include "voxlab/output.glsl"
+#include "voxlab/lighting.glsl"
+#include "composite/composite.glsl"
+
+uniform int u_preclassify;
+uniform int u_back_to_front;
+uniform int u_jitter;
+
+out vec4 frag_color;
+
+vec4 sample_colour(vec3 p, Ray ray) {
+    vec4 c = u_preclassify != 0 ? classify_pre(p) : classify_post(p);
+    if (c.a > 0.0) c.rgb = shade_sample(c.rgb, p, ray);
+    return c;
+}
+
+void main() {
+    Ray ray = camera_ray();
+    if (!clip_to_volume(ray)) {
+        frag_color = nothing();
+        return;
+    }
+    if (u_jitter != 0) jitter_start(ray);
+    frag_color = finish(u_back_to_front != 0 ? composite_back_to_front(ray) : composite_front_to_back(ray));
+}

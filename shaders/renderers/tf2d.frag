@@ -1,0 +1,31 @@
+#version 330 core
+// Renderer "tf2d": direct volume rendering classified by the 2D transfer
+// function over (value, gradient magnitude). The stage is tf2d_classify(),
+// in tf2d/tf2d.glsl; compositing is the composite stage's.
+#include "voxlab/ray.glsl"
+#include "voxlab/classify.glsl"
+#include "voxlab/output.glsl"
+#include "voxlab/lighting.glsl"
+#include "composite/composite.glsl"
+#include "tf2d/tf2d.glsl"
+
+uniform int u_back_to_front;
+uniform int u_jitter;
+
+out vec4 frag_color;
+
+vec4 sample_colour(vec3 p, Ray ray) {
+    vec4 c = tf2d_classify(sample_volume(p), length(gradient_at(p)));
+    if (c.a > 0.0) c.rgb = shade_sample(c.rgb, p, ray);
+    return c;
+}
+
+void main() {
+    Ray ray = camera_ray();
+    if (!clip_to_volume(ray)) {
+        frag_color = nothing();
+        return;
+    }
+    if (u_jitter != 0) jitter_start(ray);
+    frag_color = finish(u_back_to_front != 0 ? composite_back_to_front(ray) : composite_front_to_back(ray));
+}

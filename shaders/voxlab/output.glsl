@@ -1,0 +1,25 @@
+// voxlab GLSL library: a pixel's final colour.
+//
+// Renderers compute a premultiplied colour (rgb already multiplied by its
+// opacity a) and hand it to finish(). Normally it is laid over the
+// background: rgb + (1 - a) * background, opaque. While a cutting plane is
+// drawn, each half is rendered as a layer (u_layer = 1): the premultiplied
+// colour is kept as it is, and the framework lays the two halves over each
+// other and over the background afterwards (shaders/voxlab/cut_compose.frag).
+#ifndef VOXLAB_OUTPUT_GLSL
+#define VOXLAB_OUTPUT_GLSL
+
+uniform vec3 u_background;
+uniform int u_layer;
+
+vec4 finish(vec4 premultiplied) {
+    if (u_layer != 0) return premultiplied;
+    return vec4(premultiplied.rgb + (1.0 - premultiplied.a) * u_background, 1.0);
+}
+
+// A pixel whose ray sees nothing.
+vec4 nothing() {
+    return finish(vec4(0.0));
+}
+
+#endif

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "support/axis_views.h"
+#include "support/axis_columns.h"
 #include "support/gl_fixture.h"
 
 namespace voxlab::testing {
@@ -22,17 +22,6 @@ struct Expected {
     std::vector<std::vector<int>> grey;
     int ambiguous = 0;
 };
-
-// The voxel indices on `axis` that a world coordinate may map to: none
-// outside the box, two within 1e-4 voxel of an inner boundary.
-std::vector<int> voxelCandidates(const Volume& v, int axis, double world) {
-    const double u = world / v.spacing()[axis];
-    const int n = v.dims()[axis];
-    if (u < 0.0 || u >= n) return {};
-    const double r = std::round(u);
-    if (std::abs(u - r) < 1e-4 && r > 0 && r < n) return {int(r) - 1, int(r)};
-    return {std::min(int(std::floor(u)), n - 1)};
-}
 
 Expected cpuMip(const Volume& v, const AxisView& view, int width, int height) {
     const glm::dvec3 ext = v.extent();
@@ -93,19 +82,8 @@ TEST_P(MipConventions, AxisMipEqualsCpuMaximumForEveryView) {
     const Volume v = testVolume(GetParam());
     for (const AxisView& view : kAxisViews) {
         SCOPED_TRACE(std::string("view ") + view.name);
-        Scene scene;
-        scene.renderer = "mip";
-        scene.camera.view = view.name;
-        scene.camera.projection = Projection::Orthographic;
-        // One pixel per finer in-plane spacing: the projected dimensions in
-        // voxels when the plane is isotropic (pixel centres on voxel
-        // centres), and no pixel centre on a voxel boundary otherwise.
-        const glm::dvec3 s = v.spacing(), ext = v.extent();
-        const double pixel = std::min(s[view.rightAxis], s[view.downAxis]);
-        scene.width = int(std::ceil(ext[view.rightAxis] / pixel - 1e-9));
-        scene.height = int(std::ceil(ext[view.downAxis] / pixel - 1e-9));
-        scene.interpolation = Interpolation::Nearest;
-        scene.step = 1.0;
+        // One pixel per finer in-plane spacing, nearest, step 1.
+        const Scene scene = axisViewScene(v, view, "mip");
         const Expected want = cpuMip(v, view, scene.width, scene.height);
         const std::vector<int> got = renderGrey(v, scene);
         int bad = 0, firstBad = -1;

@@ -4,7 +4,10 @@
 #include "voxlab/ray.glsl"
 #include "voxlab/classify.glsl"
 #include "voxlab/output.glsl"
+#include "voxlab/gradients.glsl"
 #include "slicer/slicer.glsl"
+
+uniform int u_gradient;  // show |grad f| instead of f
 
 out vec4 frag_color;
 
@@ -15,5 +18,5 @@ void main() {
         frag_color = nothing();
         return;
     }
-    frag_color = finish(display_value(sample_volume(p)));
+    frag_color = finish(display_value(u_gradient != 0 ? length(gradient_at(p)) : sample_volume(p)));
 }

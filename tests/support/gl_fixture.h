@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <memory>
 
 #include "voxlab/gl_context.h"
@@ -18,7 +19,11 @@ class GlTest : public ::testing::Test {
 public:
     static void SetUpTestSuite() {
         if (!context_) context_ = createHeadlessContext();
-        if (!engine_) engine_ = std::make_unique<RenderEngine>();
+        // $VOXLAB_IMPLEMENTATION runs the tests against another
+        // implementation root (a student's work, or a deliberately broken
+        // copy of reference/); by default the reference solution.
+        const char* impl = std::getenv("VOXLAB_IMPLEMENTATION");
+        if (!engine_) engine_ = std::make_unique<RenderEngine>(impl ? impl : "");
     }
     static RenderEngine& engine() { return *engine_; }
 

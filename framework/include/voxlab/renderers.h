@@ -12,6 +12,7 @@ public:
     std::string id() const override;
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
+    std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const override;
 };
 
 class MipRenderer final : public Renderer {

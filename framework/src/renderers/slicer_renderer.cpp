@@ -6,6 +6,10 @@ namespace voxlab {
 
 std::string SlicerRenderer::id() const { return "slicer"; }
 
+std::optional<GradientEstimator> SlicerRenderer::precomputedGradients(const ParameterValues& values) const {
+    return gradientVolumeFor(values);
+}
+
 std::string SlicerRenderer::description() const {
     return "a plane through the volume centre, perpendicular to the view (moved by 'offset')";
 }
@@ -13,7 +17,12 @@ std::string SlicerRenderer::description() const {
 std::vector<ParameterSpec> SlicerRenderer::parameters() const {
     return {{"offset", ParameterType::Float, -4096.0, 4096.0, 0.0,
              "distance of the plane from the volume centre along the view direction, "
-             "in units of the smallest voxel spacing"}};
+             "in units of the smallest voxel spacing"},
+            {"gradient", ParameterType::Bool, 0, 1, 0,
+             "show the gradient magnitude (data units per unit length, through the window) instead of the value"},
+            {"sobel", ParameterType::Bool, 0, 1, 0, "26-neighbour (Sobel-like) gradient instead of central differences"},
+            {"precomputed_gradients", ParameterType::Bool, 0, 1, 0,
+             "read gradients from a volume computed on the CPU instead of estimating them"}};
 }
 
 }  // namespace voxlab

@@ -20,7 +20,9 @@
 //
 // A renderer that needs a transfer function (compositing) and a scene that
 // has none get a grey ramp over the window: opacity 0 at its low end to 0.1
-// per unit length at its high end.
+// per unit length at its high end. One that needs a 2D transfer function
+// gets a single white triangle widget (Levoy's isovalue contour) at the
+// middle of the window, radius 1.5, opacity 0.6.
 #pragma once
 
 #include <map>

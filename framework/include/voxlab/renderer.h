@@ -64,6 +64,9 @@ public:
     // even when the scene has none (compositing cannot do without one: the
     // engine then supplies a grey ramp over the window, see render_engine.h).
     virtual bool needsTransferFunction() const { return false; }
+    // The same for the 2D transfer function (the engine's fallback is one
+    // of Levoy's triangles at the middle of the window).
+    virtual bool needsTransferFunction2D() const { return false; }
     // The gradient volume to precompute on the CPU and upload, if these
     // parameter values ask for one (see gradients.h).
     virtual std::optional<GradientEstimator> precomputedGradients(const ParameterValues&) const {

@@ -69,6 +69,7 @@ public:
     std::string id() const override;
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
+    bool needsTransferFunction2D() const override { return true; }
     std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const override;
 };
 

@@ -20,6 +20,15 @@ TransferFunction fallbackTransferFunction(glm::dvec2 window) {
     return TransferFunction({{window.x, glm::vec3(1.0f), 0.0f}, {window.y, glm::vec3(1.0f), 0.1f}});
 }
 
+TransferFunction2D fallbackTransferFunction2D(glm::dvec2 window) {
+    Tf2dWidget w;
+    w.kind = Tf2dWidget::Kind::Triangle;
+    w.valueRange = glm::dvec2(0.5 * (window.x + window.y));
+    w.radius = 1.5;
+    w.alpha = 0.6f;
+    return TransferFunction2D({w});
+}
+
 void createFloatTarget(unsigned* fbo, unsigned* texture, int width, int height) {
     if (!*fbo) {
         glGenFramebuffers(1, fbo);
@@ -253,8 +262,13 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     glBindTexture(GL_TEXTURE_3D, gradientTexture_);
     prog.set("u_gradient_volume", kGradientUnit);
 
-    const std::vector<Tf2dWidget> widgets =
-        scene.transferFunction2D ? scene.transferFunction2D->widgets() : std::vector<Tf2dWidget>{};
+    std::vector<Tf2dWidget> widgets;
+    if (scene.transferFunction2D)
+        widgets = scene.transferFunction2D->widgets();
+    else if (renderer.needsTransferFunction2D())
+        widgets = fallbackTransferFunction2D(
+                      scene.window.value_or(glm::dvec2(volume_->minValue(), volume_->maxValue())))
+                      .widgets();
     prog.set("u_tf2d_count", int(widgets.size()));
     for (std::size_t i = 0; i < widgets.size(); ++i) {
         const Tf2dWidget& w = widgets[i];

@@ -21,6 +21,8 @@
 // and the normal's sign cannot be seen through it, only both together.)
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -208,6 +210,43 @@ TEST_F(GlTest, MinGradientLeavesTheSurfaceUnlit) {
         else
             EXPECT_EQ(unlitCount, 0);
     }
+}
+
+// Volume data has no inside: lighting is two-sided. A bright ball seen through
+// "high values are opaque" and a dark hole (1 - f) seen through "low values
+// are opaque" are the same surface, but their gradients point opposite ways;
+// with the normal flipped towards the viewer both must shade alike. Without
+// the flip the hole's normals face away and only the ambient term remains.
+TEST_F(GlTest, LightingIsTwoSided) {
+    const Volume ball = makePhantom("phantom:sphere:32");
+    std::vector<float> inverted(ball.voxelCount());
+    for (std::size_t i = 0; i < inverted.size(); ++i) inverted[i] = 1.0f - float(ball.valueAt(i));
+    std::vector<std::uint8_t> bytes(inverted.size() * sizeof(float));
+    std::memcpy(bytes.data(), inverted.data(), bytes.size());
+    const Volume hole(ball.dims(), VoxelType::Float32, ball.spacing(), bytes, "hole");
+
+    Scene scene;
+    scene.renderer = "composite";
+    scene.camera.azimuth = 30, scene.camera.elevation = 20;
+    scene.width = scene.height = 48;
+    scene.parameters = {{"shading", 1}};
+    const glm::vec3 white(1.0f);
+    // Opaque above 0.5 for the ball, below 0.5 for the hole: mirror images.
+    scene.transferFunction = TransferFunction({{0.45, white, 0.0f}, {0.55, white, 1.0f}});
+    engine().setVolume(ball);
+    const Image lit = engine().render(scene);
+    scene.transferFunction = TransferFunction({{0.45, white, 1.0f}, {0.55, white, 0.0f}});
+    engine().setVolume(hole);
+    const Image mirrored = engine().render(scene);
+
+    // Float rounding of 1 - f only: both see the same surface.
+    float worst = 0.0f, brightest = 0.0f;
+    for (std::size_t i = 0; i < lit.rgba.size(); ++i) {
+        worst = std::max(worst, std::abs(lit.rgba[i] - mirrored.rgba[i]));
+        brightest = std::max(brightest, mirrored.rgba[i]);
+    }
+    EXPECT_LT(worst, 2e-3f);
+    EXPECT_GT(brightest, 0.8f) << "the hole is lit by its ambient term only: normals face away";
 }
 
 }  // namespace

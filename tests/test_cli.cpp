@@ -128,6 +128,11 @@ TEST_F(Cli, ListNamesEveryRendererWithItsParameters) {
 
 TEST_F(Cli, ErrorsAreOneLineWithANonZeroExit) {
     expectOneLineError("render --dataset " + path("missing.nrrd"), "missing.nrrd: no such file");
+    // A mistyped submission folder must not quietly render the reference.
+    expectOneLineError("render --dataset phantom:sphere:8 --out " + path("x.png") + " --implementation " +
+                           path("no_such_folder"),
+                       "no_such_folder' is not a folder");
+    expectOneLineError("render --dataset phantom:sphere:8 --roi 1,2,3,4,5", "option --roi");
     expectOneLineError("render --dataset " +
                            write("trunc.nrrd", "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 8 8 8\nencoding: raw\n\nabc"),
                        "trunc.nrrd: truncated data");

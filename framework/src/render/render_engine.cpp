@@ -2,6 +2,7 @@
 #include "voxlab/render_engine.h"
 
 #include <algorithm>
+#include <filesystem>
 
 #include "voxlab/error.h"
 #include "voxlab_gl.h"
@@ -49,8 +50,20 @@ void createFloatTarget(unsigned* fbo, unsigned* texture, int width, int height) 
 
 }  // namespace
 
+namespace {
+
+// A mistyped implementation folder must not quietly render the reference.
+std::string checkedImplementationRoot(const std::string& root) {
+    if (root.empty()) return projectRoot() + "/reference";
+    if (!std::filesystem::is_directory(root))
+        throw Error("implementation root '" + root + "' is not a folder");
+    return root;
+}
+
+}  // namespace
+
 RenderEngine::RenderEngine(std::string implementationRoot)
-    : implementationRoot_(implementationRoot.empty() ? projectRoot() + "/reference" : implementationRoot),
+    : implementationRoot_(checkedImplementationRoot(implementationRoot)),
       library_(ShaderLibrary::forImplementation(implementationRoot_)) {
     glGenVertexArrays(1, &vao_);  // core profile: drawing needs a bound VAO
     glGenTextures(1, &volumeTexture_);
@@ -212,6 +225,10 @@ void RenderEngine::setSceneUniforms(const ShaderProgram& prog, const Scene& scen
     if (scene.roi) {
         lo = glm::max(lo, scene.roi->min * vol.spacing());
         hi = glm::min(hi, scene.roi->max * vol.spacing());
+        // A region that misses the box is empty. An inverted slab (lo > hi)
+        // would still clip rays along that axis to an interval outside the
+        // box, so use a single point outside it: no ray enters a point.
+        if (lo.x >= hi.x || lo.y >= hi.y || lo.z >= hi.z) lo = hi = glm::dvec3(-1.0);
     }
     prog.set("u_roi_min", glm::vec3(lo));
     prog.set("u_roi_max", glm::vec3(hi));

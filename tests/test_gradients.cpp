@@ -355,6 +355,11 @@ TEST_P(GpuGradients, LinearRampShowsTheExactSlopeMagnitude) {
     std::printf("[ measured ] %s: largest relative error of |grad| on ramps %.2e\n", caseName(c).c_str(), worst);
 }
 
+// A smooth non-linear field with mixed terms, for the GPU checks below.
+double mixedField(glm::dvec3 p) {
+    return 0.5 * p.x * p.x + 0.8 * p.x * p.y * p.z - 0.3 * p.z * p.z * p.y + 2.0 * p.y;
+}
+
 // On a quadratic field the estimators differ and the face rule matters. The
 // +z view with one pixel per voxel (sx = sy) and the plane through the
 // centres of layer k puts every pixel on a voxel centre, where the
@@ -367,9 +372,7 @@ TEST_P(GpuGradients, QuadraticFieldShowsTheDiscreteEstimatorAtVoxelCentres) {
     const GpuCase c = GetParam();
     const glm::dvec3 s(0.8, 0.8, 1.3);
     const glm::ivec3 n(12, 10, 7);
-    const Volume v = fieldVolume(n, s, [](glm::dvec3 p) {
-        return 0.5 * p.x * p.x + 0.8 * p.x * p.y * p.z - 0.3 * p.z * p.z * p.y + 2.0 * p.y;
-    });
+    const Volume v = fieldVolume(n, s, mixedField);
     double biggest = 0.0;
     for (int k = 0; k < n.z; ++k)
         for (int j = 0; j < n.y; ++j)
@@ -480,9 +483,7 @@ TEST_P(GpuGradients, NonLinearFieldMatchesTheDefinitionBetweenVoxels) {
     const GpuCase c = GetParam();
     const glm::dvec3 s(0.8, 1.0, 1.3);
     const glm::ivec3 n(11, 9, 8);
-    const Volume v = fieldVolume(n, s, [](glm::dvec3 p) {
-        return 0.5 * p.x * p.x + 0.8 * p.x * p.y * p.z - 0.3 * p.z * p.z * p.y + 2.0 * p.y;
-    });
+    const Volume v = fieldVolume(n, s, mixedField);
     CameraSpec orbit;
     orbit.azimuth = 40.0, orbit.elevation = 25.0;
     orbit.projection = Projection::Orthographic;

@@ -63,6 +63,13 @@ struct Camera {
     // Ray through the centre of pixel (px, py) (continuous pixel coordinates,
     // so pass px + 0.5 for a pixel centre). Direction is unit length.
     void ray(double px, double py, glm::dvec3* origin, glm::dvec3* direction) const;
+
+    // The matrix from world to clip space that draws geometry where these
+    // rays see it (object-order renderers): a world point on the ray through
+    // pixel (px, py) lands on that pixel. Clip z is 0 (no depth test);
+    // perspective clip w is the depth along `forward`, so geometry behind
+    // the eye is clipped away.
+    glm::mat4 clipFromWorld() const;
 };
 
 }  // namespace voxlab

@@ -37,6 +37,8 @@
 
 namespace voxlab {
 
+class EngineDrawContext;
+
 class RenderEngine {
 public:
     // `implementationRoot` is searched first for stage shaders: the project's
@@ -86,8 +88,11 @@ private:
         glm::vec3 clipPoint{0.0f}, clipNormal{0.0f};
     };
 
-    // The program for an entry shader with these baked constants (cached).
-    const ShaderProgram& program(const std::string& fragmentShader, const ShaderConstants& constants);
+    // The program for these shaders with these baked constants (cached).
+    const ShaderProgram& program(const std::string& vertexShader, const std::string& fragmentShader,
+                                 const ShaderConstants& constants);
+    friend class EngineDrawContext;
+    unsigned sliceStack(int axis);
     void setSceneUniforms(const ShaderProgram& prog, const Scene& scene) const;
     void draw(const Scene& scene, const Pass& pass);
     void drawCut(const Scene& scene, unsigned framebuffer);
@@ -111,6 +116,11 @@ private:
     unsigned gradientTexture_ = 0;
     std::optional<GradientEstimator> gradientEstimator_;
     unsigned long volumeGeneration_ = 0, gradientGeneration_ = 0;
+    // Object-order drawing: a vertex buffer for proxy geometry, and the
+    // volume as three stacks of 2D slices (built on first use per volume).
+    unsigned geometryVao_ = 0, geometryVbo_ = 0;
+    unsigned sliceStacks_[3] = {0, 0, 0};
+    unsigned long sliceStackGeneration_[3] = {0, 0, 0};
 };
 
 }  // namespace voxlab

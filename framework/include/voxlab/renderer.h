@@ -22,6 +22,8 @@
 namespace voxlab {
 
 class ShaderProgram;
+struct Camera;
+class Volume;
 
 enum class ParameterType { Float, Int, Bool };
 
@@ -45,6 +47,27 @@ struct ParameterSpec {
 
 const char* parameterTypeName(ParameterType t);
 
+// What an object-order renderer draws with (see Renderer::objectOrder).
+// The engine has bound the program and set every uniform, and blends each
+// fragment's premultiplied colour over what is already there ("over",
+// back to front).
+class DrawContext {
+public:
+    virtual ~DrawContext() = default;
+    virtual const Scene& scene() const = 0;
+    virtual const Volume& volume() const = 0;
+    virtual const Camera& camera() const = 0;
+    virtual const ShaderProgram& program() const = 0;
+    // Draws triangles (3 world positions each), in order.
+    virtual void drawTriangles(const std::vector<glm::vec3>& vertices) = 0;
+    // Draws line segments (2 world positions each).
+    virtual void drawLines(const std::vector<glm::vec3>& vertices) = 0;
+    // Binds the volume as a stack of 2D slices perpendicular to `axis` (a
+    // 2D array texture, one layer per voxel layer, bilinear within a layer)
+    // to texture unit `unit`.
+    virtual void bindSliceStack(int axis, int unit) = 0;
+};
+
 class Renderer {
 public:
     virtual ~Renderer() = default;
@@ -56,6 +79,16 @@ public:
     std::vector<ParameterSpec> parametersFor(glm::dvec2 dataRange) const;
     // The entry fragment shader, found on the shader search path.
     virtual std::string fragmentShader() const { return "renderers/" + id() + ".frag"; }
+
+    // Image-order renderers (ray casters) run their fragment shader once per
+    // pixel over a full-screen triangle. Object-order renderers (texture
+    // slicing) instead draw proxy geometry in draw(); their vertex shader is
+    // voxlab/world.vert, which places world positions with the camera.
+    virtual bool objectOrder() const { return false; }
+    virtual std::string vertexShader() const {
+        return objectOrder() ? "voxlab/world.vert" : "voxlab/fullscreen.vert";
+    }
+    virtual void draw(DrawContext& context, const ParameterValues& values) const;
     // Sets the renderer's own uniforms. The default sets each parameter as
     // uniform "u_NAME" (float for Float, int for Int and Bool).
     virtual void setUniforms(const ShaderProgram& program, const ParameterValues& values) const;

@@ -73,6 +73,29 @@ public:
     std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const override;
 };
 
+// Object-order renderers: they draw proxy geometry (draw()) instead of
+// casting rays.
+class Texslice2dRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    bool objectOrder() const override { return true; }
+    bool needsTransferFunction() const override { return true; }
+    void draw(DrawContext& context, const ParameterValues& values) const override;
+};
+
+class Texslice3dRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    bool objectOrder() const override { return true; }
+    bool needsTransferFunction() const override { return true; }
+    std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const override;
+    void draw(DrawContext& context, const ParameterValues& values) const override;
+};
+
 // Parameters several renderers declare alike (shared_parameters.cpp).
 // Shading: shading, blinn, ka, kd, ks, shininess, light_azimuth,
 // light_elevation, min_gradient, and the gradient's sobel and

@@ -85,6 +85,7 @@ public:
     void set(const char* name, glm::vec3 v) const;
     void set(const char* name, glm::vec4 v) const;
     void set(const char* name, glm::ivec3 v) const;
+    void set(const char* name, const glm::mat4& m) const;
     int location(const char* name) const;
 
 private:

@@ -239,6 +239,9 @@ void ShaderProgram::set(const char* name, glm::vec4 v) const {
     glUniform4f(location(name), v.x, v.y, v.z, v.w);
 }
 void ShaderProgram::set(const char* name, glm::ivec3 v) const { glUniform3i(location(name), v.x, v.y, v.z); }
+void ShaderProgram::set(const char* name, const glm::mat4& m) const {
+    glUniformMatrix4fv(location(name), 1, GL_FALSE, &m[0][0]);
+}
 
 void checkGlError(const char* where) {
     const GLenum err = glGetError();

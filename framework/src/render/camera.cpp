@@ -114,4 +114,25 @@ void Camera::ray(double px, double py, glm::dvec3* origin, glm::dvec3* direction
     }
 }
 
+glm::mat4 Camera::clipFromWorld() const {
+    // Image offsets from the centre: u = dot(q, right), v = dot(q, down) for
+    // q = p - position, per unit of depth d = dot(q, forward) in
+    // perspective. NDC x = u / (pixelScale W/2); NDC y points up, image rows
+    // down: y = -v / (pixelScale H/2).
+    const double sx = 1.0 / (pixelScale * 0.5 * width), sy = -1.0 / (pixelScale * 0.5 * height);
+    glm::dmat4 m(0.0);  // column-major: m[column][row]
+    const glm::dvec3 rows[2] = {right * sx, down * sy};
+    for (int r = 0; r < 2; ++r) {
+        for (int c = 0; c < 3; ++c) m[c][r] = rows[r][c];
+        m[3][r] = -glm::dot(rows[r], position);
+    }
+    if (projection == Projection::Perspective) {
+        for (int c = 0; c < 3; ++c) m[c][3] = forward[c];
+        m[3][3] = -glm::dot(forward, position);
+    } else {
+        m[3][3] = 1.0;
+    }
+    return glm::mat4(m);
+}
+
 }  // namespace voxlab

@@ -84,6 +84,10 @@ RenderEngine::~RenderEngine() {
         if (layerFbo_[i]) glDeleteFramebuffers(1, &layerFbo_[i]);
         if (layerTexture_[i]) glDeleteTextures(1, &layerTexture_[i]);
     }
+    for (unsigned& t : sliceStacks_)
+        if (t) glDeleteTextures(1, &t);
+    if (geometryVao_) glDeleteVertexArrays(1, &geometryVao_);
+    if (geometryVbo_) glDeleteBuffers(1, &geometryVbo_);
 }
 
 void RenderEngine::setVolume(const Volume& volume) {
@@ -166,14 +170,14 @@ void RenderEngine::uploadGradients(GradientEstimator estimator) {
     gradientGeneration_ = volumeGeneration_;
 }
 
-const ShaderProgram& RenderEngine::program(const std::string& fragmentShader, const ShaderConstants& constants) {
-    std::string key = fragmentShader;
+const ShaderProgram& RenderEngine::program(const std::string& vertexShader, const std::string& fragmentShader,
+                                           const ShaderConstants& constants) {
+    std::string key = vertexShader + " " + fragmentShader;
     for (const auto& [name, value] : constants) key += " " + name + "=" + std::to_string(value);
     auto it = programs_.find(key);
     if (it == programs_.end())
         it = programs_
-                 .emplace(key, std::make_unique<ShaderProgram>(library_, "voxlab/fullscreen.vert", fragmentShader,
-                                                               constants))
+                 .emplace(key, std::make_unique<ShaderProgram>(library_, vertexShader, fragmentShader, constants))
                  .first;
     return *it->second;
 }
@@ -234,6 +238,48 @@ void RenderEngine::setSceneUniforms(const ShaderProgram& prog, const Scene& scen
     prog.set("u_roi_max", glm::vec3(hi));
 }
 
+// The engine's side of DrawContext: one dynamic vertex buffer of world
+// positions (attribute 0) and the slice stacks.
+class EngineDrawContext final : public DrawContext {
+public:
+    EngineDrawContext(RenderEngine& engine, const Scene& scene, const Camera& camera, const ShaderProgram& program)
+        : engine_(engine), scene_(scene), camera_(camera), program_(program) {
+        if (!engine_.geometryVao_) {
+            glGenVertexArrays(1, &engine_.geometryVao_);
+            glGenBuffers(1, &engine_.geometryVbo_);
+            glBindVertexArray(engine_.geometryVao_);
+            glBindBuffer(GL_ARRAY_BUFFER, engine_.geometryVbo_);
+            glEnableVertexAttribArray(0);
+            glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+        }
+    }
+    const Scene& scene() const override { return scene_; }
+    const Volume& volume() const override { return *engine_.volume_; }
+    const Camera& camera() const override { return camera_; }
+    const ShaderProgram& program() const override { return program_; }
+    void drawTriangles(const std::vector<glm::vec3>& vertices) override { drawArrays(GL_TRIANGLES, vertices); }
+    void drawLines(const std::vector<glm::vec3>& vertices) override { drawArrays(GL_LINES, vertices); }
+    void bindSliceStack(int axis, int unit) override {
+        const unsigned texture = engine_.sliceStack(axis);
+        glActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, texture);
+    }
+
+private:
+    void drawArrays(GLenum mode, const std::vector<glm::vec3>& vertices) {
+        if (vertices.empty()) return;
+        glBindVertexArray(engine_.geometryVao_);
+        glBindBuffer(GL_ARRAY_BUFFER, engine_.geometryVbo_);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(glm::vec3)), vertices.data(),
+                     GL_STREAM_DRAW);
+        glDrawArrays(mode, 0, GLsizei(vertices.size()));
+    }
+    RenderEngine& engine_;
+    const Scene& scene_;
+    const Camera& camera_;
+    const ShaderProgram& program_;
+};
+
 void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     const Renderer& renderer = *pass.renderer;
     std::optional<TransferFunction> fallback;
@@ -252,7 +298,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
                                  {"u_clip_plane", pass.clip ? 1 : 0}};
     for (const ParameterSpec& p : renderer.parameters())
         if (p.type == ParameterType::Bool) constants["u_" + p.name] = pass.values.at(p.name) != 0.0 ? 1 : 0;
-    const ShaderProgram& prog = program(renderer.fragmentShader(), constants);
+    const ShaderProgram& prog = program(renderer.vertexShader(), renderer.fragmentShader(), constants);
     prog.use();
 
     glActiveTexture(GL_TEXTURE0 + kVolumeUnit);
@@ -301,10 +347,54 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     renderer.setUniforms(prog, pass.values);
 
     glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glBindVertexArray(vao_);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (renderer.objectOrder()) {
+        // Slices are laid back to front over the background (or, for a
+        // cutting-plane layer, over nothing) in premultiplied alpha.
+        const Camera cam = Camera::make(scene.camera, volume_->extent(), scene.width, scene.height);
+        prog.set("u_clip_from_world", cam.clipFromWorld());
+        const glm::vec4 under = pass.layer ? glm::vec4(0.0f) : glm::vec4(scene.background, 1.0f);
+        glClearColor(under.r, under.g, under.b, under.a);
+        glClear(GL_COLOR_BUFFER_BIT);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        EngineDrawContext context(*this, scene, cam, prog);
+        renderer.draw(context, pass.values);
+        glDisable(GL_BLEND);
+    } else {
+        glDisable(GL_BLEND);
+        glBindVertexArray(vao_);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
     checkGlError(("drawing with renderer '" + renderer.id() + "'").c_str());
+}
+
+unsigned RenderEngine::sliceStack(int axis) {
+    if (sliceStacks_[axis] && sliceStackGeneration_[axis] == volumeGeneration_) return sliceStacks_[axis];
+    if (!sliceStacks_[axis]) glGenTextures(1, &sliceStacks_[axis]);
+    // Layer k of the stack for `axis` is the voxel layer at index k along it;
+    // within a layer, the other two axes in cyclic order (axis+1, axis+2).
+    const Volume& v = *volume_;
+    const glm::ivec3 n = v.dims();
+    const int a = axis, b = (axis + 1) % 3, c = (axis + 2) % 3;
+    std::vector<float> texels(v.voxelCount());
+    std::size_t out = 0;
+    for (int k = 0; k < n[a]; ++k)
+        for (int j = 0; j < n[c]; ++j)
+            for (int i = 0; i < n[b]; ++i) {
+                glm::ivec3 ijk;
+                ijk[a] = k, ijk[b] = i, ijk[c] = j;
+                texels[out++] = float(v.value(ijk.x, ijk.y, ijk.z));
+            }
+    glBindTexture(GL_TEXTURE_2D_ARRAY, sliceStacks_[axis]);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32F, n[b], n[c], n[a], 0, GL_RED, GL_FLOAT, texels.data());
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    checkGlError("uploading a slice stack");
+    sliceStackGeneration_[axis] = volumeGeneration_;
+    return sliceStacks_[axis];
 }
 
 void RenderEngine::drawCut(const Scene& scene, unsigned framebuffer) {
@@ -339,7 +429,7 @@ void RenderEngine::drawCut(const Scene& scene, unsigned framebuffer) {
         draw(scene, negative);
     }
 
-    const ShaderProgram& compose = program("voxlab/cut_compose.frag", {});
+    const ShaderProgram& compose = program("voxlab/fullscreen.vert", "voxlab/cut_compose.frag", {});
     compose.use();
     setSceneUniforms(compose, scene);
     compose.set("u_clip_point", point);

@@ -41,6 +41,8 @@ std::vector<ParameterSpec> Renderer::parametersFor(glm::dvec2 dataRange) const {
     return specs;
 }
 
+void Renderer::draw(DrawContext&, const ParameterValues&) const {}
+
 ParameterValues Renderer::resolveParameters(const ParameterValues& given,
                                             std::optional<glm::dvec2> dataRange) const {
     const std::vector<ParameterSpec> specs = dataRange ? parametersFor(*dataRange) : parameters();

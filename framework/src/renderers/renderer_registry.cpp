@@ -17,6 +17,8 @@ const RendererRegistry& rendererRegistry() {
         r.add<CompositeRenderer>();
         r.add<IsoRenderer>();
         r.add<Tf2dRenderer>();
+        r.add<Texslice2dRenderer>();
+        r.add<Texslice3dRenderer>();
         return r;
     }();
     return registry;

@@ -1,0 +1,63 @@
+// voxlab renderer "texslice3d": object-order volume rendering with
+// view-aligned slices through the 3D texture.
+#include <cmath>
+
+#include "voxlab/camera.h"
+#include "voxlab/proxy_geometry.h"
+#include "voxlab/renderers.h"
+#include "voxlab/shader.h"
+#include "voxlab/volume.h"
+
+namespace voxlab {
+
+std::string Texslice3dRenderer::id() const { return "texslice3d"; }
+
+std::string Texslice3dRenderer::description() const {
+    return "3D texture slicing: view-aligned polygons through the 3D texture, blended back to front";
+}
+
+std::vector<ParameterSpec> Texslice3dRenderer::parameters() const {
+    std::vector<ParameterSpec> p = {
+        {"wireframe", ParameterType::Bool, 0, 1, 0, "outline the proxy polygons (lecture demo)"}};
+    for (ParameterSpec& s : shadingParameters(false)) p.push_back(s);
+    return p;
+}
+
+std::optional<GradientEstimator> Texslice3dRenderer::precomputedGradients(const ParameterValues& values) const {
+    return gradientVolumeFor(values);
+}
+
+void Texslice3dRenderer::draw(DrawContext& ctx, const ParameterValues& values) const {
+    const Volume& v = ctx.volume();
+    const glm::dvec3 ext = v.extent(), n = ctx.camera().forward;
+    const double step = ctx.scene().step * v.minSpacing();
+    // The planes dot(n, p) = d cover the box's extent along n, from its
+    // nearest corner to its farthest, `step` apart and starting half a step
+    // in (as ray samples do).
+    double nearest = 1e300, farthest = -1e300;
+    for (int bits = 0; bits < 8; ++bits) {
+        const glm::dvec3 corner(bits & 1 ? ext.x : 0.0, bits & 2 ? ext.y : 0.0, bits & 4 ? ext.z : 0.0);
+        nearest = std::min(nearest, glm::dot(n, corner));
+        farthest = std::max(farthest, glm::dot(n, corner));
+    }
+    const int count = int(std::floor((farthest - nearest) / step + 0.5));
+    std::vector<glm::vec3> triangles, outlines;
+    for (int k = count - 1; k >= 0; --k) {  // back to front
+        const std::vector<glm::dvec3> polygon =
+            planeBoxPolygon(n, nearest + (k + 0.5) * step, glm::dvec3(0.0), ext);
+        for (std::size_t i = 1; i + 1 < polygon.size(); ++i)
+            for (std::size_t j : {std::size_t(0), i, i + 1}) triangles.push_back(glm::vec3(polygon[j]));
+        for (std::size_t i = 0; i < polygon.size(); ++i) {
+            outlines.push_back(glm::vec3(polygon[i]));
+            outlines.push_back(glm::vec3(polygon[(i + 1) % polygon.size()]));
+        }
+    }
+    ctx.program().set("u_outline", 0);
+    ctx.drawTriangles(triangles);
+    if (values.at("wireframe") != 0.0) {
+        ctx.program().set("u_outline", 1);
+        ctx.drawLines(outlines);
+    }
+}
+
+}  // namespace voxlab

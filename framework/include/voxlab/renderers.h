@@ -103,6 +103,9 @@ public:
 std::vector<ParameterSpec> shadingParameters(bool shadingByDefault);
 // Compositing: early_termination, back_to_front, jitter.
 std::vector<ParameterSpec> compositingParameters();
+// Draws the texture slicers' convex polygons in the order given (back to
+// front), and their outlines on top when `outline` is set.
+void drawSlicePolygons(DrawContext& ctx, const std::vector<std::vector<glm::dvec3>>& polygons, bool outline);
 // The gradient volume that shading parameters ask for, if any.
 std::optional<GradientEstimator> gradientVolumeFor(const ParameterValues& values);
 

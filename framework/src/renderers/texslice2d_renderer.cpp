@@ -40,24 +40,18 @@ void Texslice2dRenderer::draw(DrawContext& ctx, const ParameterValues& values) c
 
     // Slice k sits at (k + 1/2) * spacing along the axis (voxel centres when
     // perVoxel is 1). Back to front: the far end first.
-    std::vector<glm::vec3> triangles, outlines;
+    std::vector<std::vector<glm::dvec3>> quads;
     for (int i = 0; i < count; ++i) {
         const int k = forward[a] > 0.0 ? count - 1 - i : i;
-        glm::dvec3 q[4];
+        std::vector<glm::dvec3> q(4);
         for (int corner = 0; corner < 4; ++corner) {
             q[corner][a] = (k + 0.5) * spacing;
             q[corner][b] = (corner == 1 || corner == 2) ? ext[b] : 0.0;
             q[corner][c] = corner >= 2 ? ext[c] : 0.0;
         }
-        for (int t : {0, 1, 2, 0, 2, 3}) triangles.push_back(glm::vec3(q[t]));
-        for (int e = 0; e < 4; ++e) outlines.push_back(glm::vec3(q[e])), outlines.push_back(glm::vec3(q[(e + 1) % 4]));
+        quads.push_back(q);
     }
-    ctx.program().set("u_outline", 0);
-    ctx.drawTriangles(triangles);
-    if (values.at("wireframe") != 0.0) {
-        ctx.program().set("u_outline", 1);
-        ctx.drawLines(outlines);
-    }
+    drawSlicePolygons(ctx, quads, values.at("wireframe") != 0.0);
 }
 
 }  // namespace voxlab

@@ -41,23 +41,10 @@ void Texslice3dRenderer::draw(DrawContext& ctx, const ParameterValues& values) c
         farthest = std::max(farthest, glm::dot(n, corner));
     }
     const int count = int(std::floor((farthest - nearest) / step + 0.5));
-    std::vector<glm::vec3> triangles, outlines;
-    for (int k = count - 1; k >= 0; --k) {  // back to front
-        const std::vector<glm::dvec3> polygon =
-            planeBoxPolygon(n, nearest + (k + 0.5) * step, glm::dvec3(0.0), ext);
-        for (std::size_t i = 1; i + 1 < polygon.size(); ++i)
-            for (std::size_t j : {std::size_t(0), i, i + 1}) triangles.push_back(glm::vec3(polygon[j]));
-        for (std::size_t i = 0; i < polygon.size(); ++i) {
-            outlines.push_back(glm::vec3(polygon[i]));
-            outlines.push_back(glm::vec3(polygon[(i + 1) % polygon.size()]));
-        }
-    }
-    ctx.program().set("u_outline", 0);
-    ctx.drawTriangles(triangles);
-    if (values.at("wireframe") != 0.0) {
-        ctx.program().set("u_outline", 1);
-        ctx.drawLines(outlines);
-    }
+    std::vector<std::vector<glm::dvec3>> polygons;
+    for (int k = count - 1; k >= 0; --k)  // back to front
+        polygons.push_back(planeBoxPolygon(n, nearest + (k + 0.5) * step, glm::dvec3(0.0), ext));
+    drawSlicePolygons(ctx, polygons, values.at("wireframe") != 0.0);
 }
 
 }  // namespace voxlab

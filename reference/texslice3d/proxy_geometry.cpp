@@ -22,10 +22,13 @@ namespace voxlab {
 
 std::vector<glm::dvec3> planeBoxPolygon(glm::dvec3 normal, double offset, glm::dvec3 lo, glm::dvec3 hi) {
     // BEGIN SOLUTION
-    const double length = glm::length(normal);
-    if (!(length > 0.0)) return {};
-    const glm::dvec3 n = normal / length;
-    const double d = offset / length;
+    // Scale by the largest component first: squaring a huge or tiny normal
+    // in glm::length would overflow or underflow.
+    const double largest = std::max({std::abs(normal.x), std::abs(normal.y), std::abs(normal.z)});
+    if (!(largest > 0.0) || !std::isfinite(largest)) return {};
+    const double length = glm::length(normal / largest);
+    const glm::dvec3 n = (normal / largest) / length;
+    const double d = (offset / largest) / length;
     const double scale = glm::length(hi - lo);
     const double eps = 1e-12 * std::max(scale, 1.0);
 

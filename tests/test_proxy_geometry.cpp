@@ -659,11 +659,10 @@ TEST(ProxyGeometry, NormalLengthDoesNotMatterAndItsSignSetsTheWinding) {
     }
 }
 
-// Disabled: the reference normalises with glm::length, whose square
-// overflows for |n| above ~1e154 (the plane x = 0.5 with n = (1e155, 0, 0)
-// gives all 8 corners) and underflows below ~1e-162 (n = (1e-170, 0, 0)
-// gives nothing). Remove the prefix if the contract is meant to cover any
-// representable normal.
+// Any representable normal length works: normalising with glm::length
+// alone would overflow above ~1e154 (the plane x = 0.5 with n = (1e155, 0, 0)
+// gave all 8 corners) and underflow below ~1e-162 (n = (1e-170, 0, 0) gave
+// nothing).
 TEST(ProxyGeometry, ExtremeNormalLengths) {
     const Box cube{{0, 0, 0}, {1, 1, 1}};
     for (double s : {1e155, 1e200, 1e-170, 1e-300}) {

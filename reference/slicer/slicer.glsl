@@ -20,7 +20,7 @@ uniform float u_offset;
 // not (ray parallel to the plane, or the plane behind the ray's origin);
 // otherwise stores the world position in `hit`.
 bool slice_plane_hit(Ray ray, out vec3 hit) {
-    // BEGIN SOLUTION
+    // BEGIN WORKED EXAMPLE
     vec3 normal = u_cam_forward;
     vec3 centre = 0.5 * u_volume_extent + u_offset * u_min_spacing * normal;
     float denom = dot(ray.direction, normal);
@@ -30,7 +30,7 @@ bool slice_plane_hit(Ray ray, out vec3 hit) {
     if (t < 0.0) return false;
     hit = ray.origin + t * ray.direction;
     return true;
-    // END SOLUTION
+    // END WORKED EXAMPLE
 }
 
 #endif

@@ -6,6 +6,7 @@
 // the axis along which the view direction has its largest component. At 45
 // degrees between two axes both components are equal and the image jumps
 // when the stack switches: the classic artefact of the method.
+#include "voxlab/error.h"  // NotImplemented, for the student stubs
 #include "voxlab/proxy_geometry.h"
 
 #include <cmath>

@@ -13,6 +13,7 @@
 //  - order the points by angle around their centroid, measured in a basis
 //    (u, v) of the plane chosen so that increasing angle runs
 //    counter-clockwise for a viewer looking along n (see proxy_geometry.h).
+#include "voxlab/error.h"  // NotImplemented, for the student stubs
 #include "voxlab/proxy_geometry.h"
 
 #include <algorithm>

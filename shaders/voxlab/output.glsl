@@ -9,10 +9,13 @@
 #ifndef VOXLAB_OUTPUT_GLSL
 #define VOXLAB_OUTPUT_GLSL
 
+#include "voxlab/not_implemented.glsl"
+
 uniform vec3 u_background;
 uniform int u_layer;
 
 vec4 finish(vec4 premultiplied) {
+    if (voxlab_not_implemented) return not_implemented_pattern();
     if (u_layer != 0) return premultiplied;
     return vec4(premultiplied.rgb + (1.0 - premultiplied.a) * u_background, 1.0);
 }

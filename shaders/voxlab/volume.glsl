@@ -11,6 +11,8 @@
 #ifndef VOXLAB_VOLUME_GLSL
 #define VOXLAB_VOLUME_GLSL
 
+#include "voxlab/not_implemented.glsl"
+
 uniform sampler3D u_volume;
 uniform ivec3 u_volume_dims;
 uniform vec3 u_volume_extent;

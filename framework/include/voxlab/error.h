@@ -16,4 +16,12 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// Thrown by the stubs of student stages written in C++ (assignments/):
+// "planeBoxPolygon is not yet implemented (a student stage)".
+class NotImplemented : public Error {
+public:
+    explicit NotImplemented(const std::string& function)
+        : Error(function + " is not yet implemented (a student stage)") {}
+};
+
 }  // namespace voxlab

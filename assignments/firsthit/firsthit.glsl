@@ -1,0 +1,28 @@
+// Student starter code, generated from reference/firsthit/firsthit.glsl by tools/make_assignments.py.
+// Implement the functions marked TODO; everything else is given.
+// Stage: first hit (closest-vessel projection).
+//
+// MIP loses depth: a bright vessel behind another looks the same as one in
+// front. Closest-vessel projection (Zuiderveld et al., 1995) shows instead
+// the first sample along the ray whose value reaches a threshold, so nearer
+// structures hide farther ones. The renderer shows the value found, or its
+// depth.
+//
+// Walk the samples m = 0, 1, ... in order and stop at the first with
+// value >= u_threshold.
+#ifndef VOXLAB_STAGE_FIRSTHIT_GLSL
+#define VOXLAB_STAGE_FIRSTHIT_GLSL
+
+#include "voxlab/ray.glsl"
+
+uniform float u_threshold;  // data units
+
+// Returns true when a sample reaches the threshold, with its distance along
+// the ray (t, world units) and its value.
+bool first_hit(Ray ray, out float t, out float value) {
+    // TODO: implement this function (see the comment above it).
+    not_implemented();
+    return false;
+}
+
+#endif

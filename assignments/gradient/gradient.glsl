@@ -1,0 +1,52 @@
+// Student starter code, generated from reference/gradient/gradient.glsl by tools/make_assignments.py.
+// Implement the functions marked TODO; everything else is given.
+// Stage: gradient estimation.
+//
+// The gradient grad f points where the value grows fastest; its length says
+// how fast. Shading uses its direction as a surface normal, the 2D transfer
+// function its length. The volume only has samples, so the derivative is
+// estimated by finite differences of sample_volume().
+//
+// Work along each axis a with h = the voxel spacing on that axis
+// (u_volume_extent / u_volume_dims), at the two points p - h e_a and
+// p + h e_a. Near the faces of the volume those points may fall outside the
+// range of voxel centres, [h/2, extent - h/2]; clamp them into it and divide
+// by the distance that is left (a one-sided difference). That keeps the
+// estimate exact on a linear field right up to the faces.
+//
+// Return the gradient per unit length, the smallest voxel spacing: multiply
+// the per-world-unit result by u_min_spacing. (On a volume of spacing 1 both
+// are the same.) framework/include/voxlab/gradients.h computes the same
+// estimators on the CPU, at the voxels.
+#ifndef VOXLAB_STAGE_GRADIENT_GLSL
+#define VOXLAB_STAGE_GRADIENT_GLSL
+
+#include "voxlab/volume.glsl"
+
+// The derivative along `axis` at p, from the samples at p +- offset (clamped
+// as above); `offset` points along `axis`.
+float axis_difference(vec3 p, int axis) {
+    // TODO: implement this function (see the comment above it).
+    not_implemented();
+    return 0.0;
+}
+
+// Central differences: 6 samples, one pair per axis.
+vec3 gradient_central(vec3 p) {
+    // TODO: implement this function (see the comment above it).
+    not_implemented();
+    return vec3(0.0);
+}
+
+// The 26-neighbour (Sobel-like) estimator: along each axis, average the
+// central differences taken on the 3 x 3 neighbouring lines parallel to it,
+// with weights (2 - |da|) (2 - |db|) for offsets da, db in {-1, 0, 1} voxels
+// across the line (the smoothing kernel [1 2 1] in both directions; the
+// weights add up to 16). Noise is smoothed; a linear field stays exact.
+vec3 gradient_sobel(vec3 p) {
+    // TODO: implement this function (see the comment above it).
+    not_implemented();
+    return vec3(0.0);
+}
+
+#endif

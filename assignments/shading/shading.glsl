@@ -1,0 +1,30 @@
+// Student starter code, generated from reference/shading/shading.glsl by tools/make_assignments.py.
+// Implement the functions marked TODO; everything else is given.
+// Stage: Phong and Blinn-Phong shading.
+//
+// A lit sample's colour is the sum of three terms (B. T. Phong, 1975):
+//   ambient   ka * colour                      light from everywhere;
+//   diffuse   kd * max(n.l, 0) * colour        Lambert: brightest facing the light;
+//   specular  ks * max(r.v, 0)^shininess       a white highlight, r = reflect(-l, n)
+//             (Phong), or ks * max(n.h, 0)^shininess with the half vector
+//             h = normalize(l + v) (Blinn-Phong, J. F. Blinn 1977: cheaper,
+//             and its highlight is wider for the same exponent).
+// All vectors have unit length and point away from the sample: n the normal,
+// l towards the light, v towards the viewer. The framework's lighting.glsl
+// finds n from the gradient and skips flat regions.
+#ifndef VOXLAB_STAGE_SHADING_GLSL
+#define VOXLAB_STAGE_SHADING_GLSL
+
+uniform float u_ka;
+uniform float u_kd;
+uniform float u_ks;
+uniform float u_shininess;
+uniform int u_blinn;  // 1: Blinn-Phong's half vector instead of the reflection
+
+vec3 phong(vec3 colour, vec3 normal, vec3 light, vec3 view) {
+    // TODO: implement this function (see the comment above it).
+    not_implemented();
+    return vec3(0.0);
+}
+
+#endif

@@ -1,0 +1,31 @@
+// Student starter code, generated from reference/slab_mip/slab_mip.glsl by tools/make_assignments.py.
+// Implement the functions marked TODO; everything else is given.
+// Stage: thin-slab MIP.
+//
+// A MIP of the whole volume piles everything on top of everything. Radiology
+// workstations therefore project a slab: only the part of the volume within
+// thickness/2 of a plane perpendicular to the view. Moving the plane through
+// the volume scrolls through it, slab by slab.
+//
+// The plane passes through the centre of the volume's box moved by u_offset
+// along the viewing direction u_cam_forward (its normal); u_offset and
+// u_thickness are in units of the smallest spacing (u_min_spacing). Clip the
+// ray to the slab: the points p with |dot(p - c, u_cam_forward)| <= h, where
+// c is the plane's centre and h = thickness/2 in world units. The MIP stage
+// (mip/mip.glsl) then projects what is left.
+#ifndef VOXLAB_STAGE_SLAB_MIP_GLSL
+#define VOXLAB_STAGE_SLAB_MIP_GLSL
+
+#include "voxlab/ray.glsl"
+
+uniform float u_offset;
+uniform float u_thickness;
+
+// Shortens the ray to the slab; returns false when nothing is left.
+bool clip_to_slab(inout Ray ray) {
+    // TODO: implement this function (see the comment above it).
+    not_implemented();
+    return false;
+}
+
+#endif

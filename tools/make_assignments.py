@@ -1,0 +1,157 @@
+#!/usr/bin/env python3
+"""Generates the student starter code, assignments/, from reference/.
+
+One source of truth: every solution body in reference/ sits between
+`// BEGIN SOLUTION` and `// END SOLUTION` lines. This tool copies reference/
+to assignments/ path for path and replaces each such block with a loud stub:
+
+  GLSL  not_implemented(); and a neutral return value: every pixel that used
+        the stage shows a magenta-and-black checkerboard
+        (shaders/voxlab/not_implemented.glsl);
+  C++   throw NotImplemented("function"); (framework/include/voxlab/error.h).
+
+Blocks between `// BEGIN WORKED EXAMPLE` and `// END WORKED EXAMPLE` are
+kept (the slicer is a worked example). Every other file is copied as it is.
+assignments/README.md is not generated.
+
+    python3 tools/make_assignments.py           # (re)writes assignments/
+    python3 tools/make_assignments.py --check   # exit 1 if assignments/ has drifted
+"""
+import argparse
+import os
+import re
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+REFERENCE = os.path.join(ROOT, "reference")
+ASSIGNMENTS = os.path.join(ROOT, "assignments")
+KEEP = {"README.md"}  # files of assignments/ that the tool does not own
+
+BEGIN = re.compile(r"^(\s*)// BEGIN SOLUTION\s*$")
+END = re.compile(r"^\s*// END SOLUTION\s*$")
+GLSL_SIGNATURE = re.compile(r"^(\w+)\s+(\w+)\s*\(")
+CPP_SIGNATURE = re.compile(r"^[\w:<>,\s*&]*?(\w+)\s*\(")
+GLSL_DEFAULTS = {"float": "0.0", "int": "0", "bool": "false", "vec2": "vec2(0.0)",
+                 "vec3": "vec3(0.0)", "vec4": "vec4(0.0)", "ivec3": "ivec3(0)"}
+
+
+class GeneratorError(Exception):
+    pass
+
+
+def stub(lines, begin, indent, path, is_cpp):
+    """The stub for the solution block starting at line index `begin`."""
+    # The function's signature: the nearest line above at column 0.
+    for k in range(begin - 1, -1, -1):
+        line = lines[k]
+        if line and not line[0].isspace() and "(" in line and not line.startswith("//"):
+            break
+    else:
+        raise GeneratorError(f"{path}:{begin + 1}: no function signature above BEGIN SOLUTION")
+    todo = f"{indent}// TODO: implement this function (see the comment above it)."
+    if is_cpp:
+        m = CPP_SIGNATURE.match(line)
+        if not m:
+            raise GeneratorError(f"{path}:{k + 1}: cannot read the function name")
+        return [todo, f'{indent}throw NotImplemented("{m.group(1)}");']
+    m = GLSL_SIGNATURE.match(line)
+    if not m:
+        raise GeneratorError(f"{path}:{k + 1}: cannot read the return type")
+    out = [todo, f"{indent}not_implemented();"]
+    if m.group(1) != "void":
+        if m.group(1) not in GLSL_DEFAULTS:
+            raise GeneratorError(f"{path}:{k + 1}: no stub value for return type {m.group(1)}")
+        out.append(f"{indent}return {GLSL_DEFAULTS[m.group(1)]};")
+    return out
+
+
+def generate(path, text):
+    """The assignment version of one reference file."""
+    if not path.endswith((".glsl", ".cpp", ".h")):
+        return text
+    is_cpp = not path.endswith(".glsl")
+    lines = text.split("\n")
+    out, k = [], 0
+    while k < len(lines):
+        m = BEGIN.match(lines[k])
+        if not m:
+            if END.match(lines[k]):
+                raise GeneratorError(f"{path}:{k + 1}: END SOLUTION without BEGIN")
+            out.append(lines[k])
+            k += 1
+            continue
+        end = k + 1
+        while end < len(lines) and not END.match(lines[end]):
+            if BEGIN.match(lines[end]):
+                raise GeneratorError(f"{path}:{end + 1}: nested BEGIN SOLUTION")
+            end += 1
+        if end == len(lines):
+            raise GeneratorError(f"{path}:{k + 1}: BEGIN SOLUTION without END")
+        out.extend(stub(lines, k, m.group(1), path, is_cpp))
+        k = end + 1
+    header = ("// Student starter code, generated from reference/" + path +
+              " by tools/make_assignments.py.\n// Implement the functions marked TODO; "
+              "everything else is given.\n")
+    return header + "\n".join(out)
+
+
+def expected_files():
+    files = {}
+    for folder, _, names in os.walk(REFERENCE):
+        for name in sorted(names):
+            full = os.path.join(folder, name)
+            rel = os.path.relpath(full, REFERENCE)
+            with open(full, encoding="utf-8") as f:
+                files[rel] = generate(rel, f.read())
+    return files
+
+
+def existing_files():
+    found = set()
+    for folder, _, names in os.walk(ASSIGNMENTS):
+        for name in names:
+            rel = os.path.relpath(os.path.join(folder, name), ASSIGNMENTS)
+            if rel not in KEEP:
+                found.add(rel)
+    return found
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--check", action="store_true", help="report drift instead of writing")
+    args = parser.parse_args()
+    try:
+        files = expected_files()
+    except GeneratorError as e:
+        sys.exit(f"make_assignments: {e}")
+    stale = sorted(existing_files() - set(files))
+    if args.check:
+        problems = [f"assignments/{rel}: not in reference/ (remove it)" for rel in stale]
+        for rel, text in sorted(files.items()):
+            path = os.path.join(ASSIGNMENTS, rel)
+            if not os.path.exists(path):
+                problems.append(f"assignments/{rel}: missing")
+            else:
+                with open(path, encoding="utf-8") as f:
+                    if f.read() != text:
+                        problems.append(f"assignments/{rel}: differs from what reference/{rel} generates")
+        for p in problems:
+            print(p, file=sys.stderr)
+        if problems:
+            print("make_assignments: assignments/ has drifted: run python3 tools/make_assignments.py",
+                  file=sys.stderr)
+            sys.exit(1)
+        print(f"assignments/ matches reference/ ({len(files)} files)")
+        return
+    for rel in stale:
+        os.remove(os.path.join(ASSIGNMENTS, rel))
+    for rel, text in files.items():
+        path = os.path.join(ASSIGNMENTS, rel)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(text)
+    print(f"wrote {len(files)} files to assignments/")
+
+
+if __name__ == "__main__":
+    main()

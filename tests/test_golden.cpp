@@ -78,7 +78,7 @@ TEST_P(Golden, MatchesTheStoredImage) {
             worst = std::max(worst, d);
             if (d > tol.maxDifference) ++differing;
             // Differences amplified 8x, so that one grey level shows.
-            diff.at(x, y) = glm::vec4(glm::vec3(std::min(1.0f, d * 8.0f / 255.0f)), 1.0f);
+            diff.set(x, y, glm::vec4(glm::vec3(std::min(1.0f, d * 8.0f / 255.0f)), 1.0f));
         }
     const double fraction = double(differing) / (double(got.width) * got.height);
     if (fraction > tol.maxFraction) {

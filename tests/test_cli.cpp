@@ -102,6 +102,23 @@ TEST_F(Cli, RenderAcceptsEveryRendererAndBothProjections) {
         }
 }
 
+TEST_F(Cli, CompareReportsTheMetrics) {
+    const std::string a = path("a.png"), b = path("b.png"), small = path("small.png");
+    Image img(16, 16);
+    savePng(img, a);
+    img.set(3, 3, glm::vec4(1.0f));  // one pixel white: 1/256 of the pixels, 255 levels off
+    savePng(img, b);
+    savePng(Image(8, 8), small);
+    const CommandResult same = runVoxlab("compare " + a + " " + a);
+    ASSERT_EQ(same.exitCode, 0) << same.err;
+    EXPECT_NE(same.out.find("PSNR:             inf"), std::string::npos) << same.out;
+    const CommandResult differ = runVoxlab("compare " + a + " " + b);
+    ASSERT_EQ(differ.exitCode, 0) << differ.err;
+    EXPECT_NE(differ.out.find("max difference:   255.00"), std::string::npos) << differ.out;
+    EXPECT_NE(differ.out.find("0.391% of pixels"), std::string::npos) << differ.out;
+    expectOneLineError("compare " + a + " " + small, "images differ in size (16x16 and 8x8)");
+}
+
 TEST_F(Cli, InfoDescribesTheVolume) {
     const CommandResult r = runVoxlab("info cthead.nrrd");
     ASSERT_EQ(r.exitCode, 0) << r.err;

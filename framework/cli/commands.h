@@ -15,6 +15,7 @@ int renderCommand(int argc, char** argv);
 int infoCommand(int argc, char** argv);
 int listCommand(int argc, char** argv);
 int viewCommand(int argc, char** argv);
+int compareCommand(int argc, char** argv);
 
 // Options that describe a scene, shared by `render` and `view`.
 std::vector<OptionSpec> sceneOptions();

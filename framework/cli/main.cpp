@@ -16,6 +16,7 @@ void usage(std::ostream& out) {
            "  render [SCENE]         render one image headless to PNG\n"
            "  info DATASET           dimensions, type, spacing, value range and histogram of a volume\n"
            "  list                   the renderers and their parameters\n"
+           "  compare A.png B.png    difference, PSNR and SSIM between two images\n"
            "  help                   this text\n\n"
            "Every command takes --help. Datasets are files (.nrrd .nhdr .fld .dat) or phantoms such as\n"
            "phantom:marschner-lobb:64; bare names are also looked up in the project's datasets/ folder.\n";
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
         if (command == "info") return infoCommand(argc, argv);
         if (command == "list") return listCommand(argc, argv);
         if (command == "view") return viewCommand(argc, argv);
+        if (command == "compare") return compareCommand(argc, argv);
         if (command == "help" || command == "--help" || command == "-h") {
             usage(std::cout);
             return 0;

@@ -12,7 +12,8 @@
 // plane is linear in t:
 //     s(t) = dot(origin - point, normal) + t * dot(direction, normal),
 // so the ray crosses the plane once, at t = -s(0) / dot(direction, normal),
-// unless it runs parallel to it. Moving towards the normal
+// unless it runs parallel to it (then it stays on one side: keep all of it
+// when s(0) >= 0, nothing otherwise). Moving towards the normal
 // (dot(direction, normal) > 0) the ray enters the half-space there: raise
 // t_entry. Moving away, it leaves: lower t_exit.
 #ifndef VOXLAB_STAGE_CUTTING_PLANE_GLSL

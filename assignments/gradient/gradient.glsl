@@ -23,8 +23,8 @@
 
 #include "voxlab/volume.glsl"
 
-// The derivative along `axis` at p, from the samples at p +- offset (clamped
-// as above); `offset` points along `axis`.
+// The derivative along `axis` (0, 1, 2) at p, from the samples at
+// p -+ h e_axis (clamped as above), in data units per world unit.
 float axis_difference(vec3 p, int axis) {
     // TODO: implement this function (see the comment above it).
     not_implemented();

@@ -5,7 +5,8 @@
 // A lit sample's colour is the sum of three terms (B. T. Phong, 1975):
 //   ambient   ka * colour                      light from everywhere;
 //   diffuse   kd * max(n.l, 0) * colour        Lambert: brightest facing the light;
-//   specular  ks * max(r.v, 0)^shininess       a white highlight, r = reflect(-l, n)
+//   specular  ks * max(r.v, 0)^shininess       a white highlight, r = reflect(-l, n);
+//             none at all where n.l <= 0 (the light does not reach that side)
 //             (Phong), or ks * max(n.h, 0)^shininess with the half vector
 //             h = normalize(l + v) (Blinn-Phong, J. F. Blinn 1977: cheaper,
 //             and its highlight is wider for the same exponent).

@@ -7,7 +7,8 @@
 // them, so each frame draws the stack whose slices face the viewer most:
 // the axis along which the view direction has its largest component. At 45
 // degrees between two axes both components are equal and the image jumps
-// when the stack switches: the classic artefact of the method.
+// when the stack switches: the classic artefact of the method. Ties go to
+// the lower axis (x before y before z).
 #include "voxlab/error.h"  // NotImplemented, for the student stubs
 #include "voxlab/proxy_geometry.h"
 

@@ -8,6 +8,7 @@
 // farther between two slices: u_slice_spacing / |d_a|, where d_a is the
 // component of the unit ray direction along the stack's axis. Without this
 // correction the image darkens or brightens as the view turns.
+// opacity_correction() from voxlab/classify.glsl applies the exponent.
 #ifndef VOXLAB_STAGE_TEXSLICE2D_GLSL
 #define VOXLAB_STAGE_TEXSLICE2D_GLSL
 

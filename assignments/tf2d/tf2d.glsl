@@ -13,7 +13,9 @@
 //  - box i: opacity u_tf2d_color[i].a where shape.x <= f <= shape.y and
 //    shape.z <= g <= shape.w, else 0.
 // Combine the widgets as layers: opacity 1 - prod(1 - alpha_i), colour the
-// alpha-weighted mean of their colours (u_tf2d_color[i].rgb).
+// alpha-weighted mean of their colours (u_tf2d_color[i].rgb). Where no
+// widget gives any opacity, return vec4(0). (Gradient magnitudes are never
+// negative, so "g == 0" above can be tested as g <= 0.)
 #ifndef VOXLAB_STAGE_TF2D_GLSL
 #define VOXLAB_STAGE_TF2D_GLSL
 

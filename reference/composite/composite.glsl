@@ -70,8 +70,9 @@ vec4 classify_pre(vec3 p) {
     // END SOLUTION
 }
 
-// Moves the first sample by a random fraction of a step (the same for a
-// pixel in every frame). Sampling every ray at the same depths makes
+// Moves the start of the ray by (pixel_random() - 1/2) steps, a random
+// offset in [-1/2, 1/2) of a step, centred so that the ray keeps its
+// samples on average (the same offset for a pixel in every frame). Sampling every ray at the same depths makes
 // wood-grain rings on smooth surfaces; jittering the start turns them into
 // fine noise (the ray still takes its samples one step apart).
 void jitter_start(inout Ray ray) {

@@ -7,7 +7,8 @@
 // depth.
 //
 // Walk the samples m = 0, 1, ... in order and stop at the first with
-// value >= u_threshold.
+// value >= u_threshold. Its distance along the ray is
+// t = ray.t_entry + (m + 1/2) * u_step (sample_position() gives the point).
 #ifndef VOXLAB_STAGE_FIRSTHIT_GLSL
 #define VOXLAB_STAGE_FIRSTHIT_GLSL
 

@@ -3,7 +3,8 @@
 // The isosurface f(p) = u_isovalue separates values below the isovalue from
 // values above it. March along the ray: the surface lies between two
 // consecutive samples whose values are on different sides of the isovalue
-// (f - iso changes sign). Report the later sample's position, or better,
+// (f - iso changes sign, either way; a value equal to the isovalue counts as
+// above). Report the later sample's position, or better,
 // refine it: bisection halves the interval [t_before, t_after] that holds
 // the crossing, u_refinement_steps times, keeping the half in which the sign
 // still changes, and returns the middle of the last interval. Each step

@@ -9,8 +9,10 @@
 // along the viewing direction u_cam_forward (its normal); u_offset and
 // u_thickness are in units of the smallest spacing (u_min_spacing). Clip the
 // ray to the slab: the points p with |dot(p - c, u_cam_forward)| <= h, where
-// c is the plane's centre and h = thickness/2 in world units. The MIP stage
-// (mip/mip.glsl) then projects what is left.
+// c is the plane's centre and h = thickness/2 in world units: two
+// half-spaces, which clip_to_half_space() from the cutting-plane stage
+// handles (rays parallel to the slab included). The MIP stage (mip/mip.glsl)
+// then projects what is left.
 #ifndef VOXLAB_STAGE_SLAB_MIP_GLSL
 #define VOXLAB_STAGE_SLAB_MIP_GLSL
 

@@ -101,10 +101,10 @@ public:
     // of Levoy's triangles at the middle of the window).
     virtual bool needsTransferFunction2D() const { return false; }
     // The gradient volume to precompute on the CPU and upload, if these
-    // parameter values ask for one (see gradients.h).
-    virtual std::optional<GradientEstimator> precomputedGradients(const ParameterValues&) const {
-        return std::nullopt;
-    }
+    // parameter values ask for one (see gradients.h): renderers that declare
+    // the shared parameters `precomputed_gradients` and `sobel` get it when
+    // `precomputed_gradients` is on; others never do.
+    std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const;
 
     // Checks `given` against the declared parameters (unknown name, out of
     // range, not an integer, not a bool) and fills in defaults. Errors name

@@ -12,7 +12,6 @@ public:
     std::string id() const override;
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
-    std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const override;
 };
 
 class MipRenderer final : public Renderer {
@@ -53,7 +52,6 @@ public:
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
     bool needsTransferFunction() const override { return true; }
-    std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const override;
 };
 
 class IsoRenderer final : public Renderer {
@@ -61,7 +59,6 @@ public:
     std::string id() const override;
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
-    std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const override;
 };
 
 class Tf2dRenderer final : public Renderer {
@@ -70,7 +67,6 @@ public:
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
     bool needsTransferFunction2D() const override { return true; }
-    std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const override;
 };
 
 // Object-order renderers: they draw proxy geometry (draw()) instead of
@@ -92,7 +88,6 @@ public:
     std::vector<ParameterSpec> parameters() const override;
     bool objectOrder() const override { return true; }
     bool needsTransferFunction() const override { return true; }
-    std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const override;
     void draw(DrawContext& context, const ParameterValues& values) const override;
 };
 
@@ -106,7 +101,5 @@ std::vector<ParameterSpec> compositingParameters();
 // Draws the texture slicers' convex polygons in the order given (back to
 // front), and their outlines on top when `outline` is set.
 void drawSlicePolygons(DrawContext& ctx, const std::vector<std::vector<glm::dvec3>>& polygons, bool outline);
-// The gradient volume that shading parameters ask for, if any.
-std::optional<GradientEstimator> gradientVolumeFor(const ParameterValues& values);
 
 }  // namespace voxlab

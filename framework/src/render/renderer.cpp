@@ -43,6 +43,15 @@ std::vector<ParameterSpec> Renderer::parametersFor(glm::dvec2 dataRange) const {
 
 void Renderer::draw(DrawContext&, const ParameterValues&) const {}
 
+std::optional<GradientEstimator> Renderer::precomputedGradients(const ParameterValues& values) const {
+    const auto on = [&](const char* name) {
+        const auto it = values.find(name);
+        return it != values.end() && it->second != 0.0;
+    };
+    if (!on("precomputed_gradients")) return std::nullopt;
+    return on("sobel") ? GradientEstimator::Sobel : GradientEstimator::Central;
+}
+
 ParameterValues Renderer::resolveParameters(const ParameterValues& given,
                                             std::optional<glm::dvec2> dataRange) const {
     const std::vector<ParameterSpec> specs = dataRange ? parametersFor(*dataRange) : parameters();

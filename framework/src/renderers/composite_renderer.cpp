@@ -18,8 +18,4 @@ std::vector<ParameterSpec> CompositeRenderer::parameters() const {
     return p;
 }
 
-std::optional<GradientEstimator> CompositeRenderer::precomputedGradients(const ParameterValues& values) const {
-    return gradientVolumeFor(values);
-}
-
 }  // namespace voxlab

@@ -25,8 +25,4 @@ std::vector<ParameterSpec> IsoRenderer::parameters() const {
     return p;
 }
 
-std::optional<GradientEstimator> IsoRenderer::precomputedGradients(const ParameterValues& values) const {
-    return gradientVolumeFor(values);
-}
-
 }  // namespace voxlab

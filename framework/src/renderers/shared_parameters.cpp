@@ -35,13 +35,4 @@ std::vector<ParameterSpec> compositingParameters() {
     };
 }
 
-std::optional<GradientEstimator> gradientVolumeFor(const ParameterValues& values) {
-    const auto on = [&](const char* name) {
-        const auto it = values.find(name);
-        return it != values.end() && it->second != 0.0;
-    };
-    if (!on("precomputed_gradients")) return std::nullopt;
-    return on("sobel") ? GradientEstimator::Sobel : GradientEstimator::Central;
-}
-
 }  // namespace voxlab

@@ -6,10 +6,6 @@ namespace voxlab {
 
 std::string SlicerRenderer::id() const { return "slicer"; }
 
-std::optional<GradientEstimator> SlicerRenderer::precomputedGradients(const ParameterValues& values) const {
-    return gradientVolumeFor(values);
-}
-
 std::string SlicerRenderer::description() const {
     return "a plane through the volume centre, perpendicular to the view (moved by 'offset')";
 }

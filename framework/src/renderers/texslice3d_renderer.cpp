@@ -23,10 +23,6 @@ std::vector<ParameterSpec> Texslice3dRenderer::parameters() const {
     return p;
 }
 
-std::optional<GradientEstimator> Texslice3dRenderer::precomputedGradients(const ParameterValues& values) const {
-    return gradientVolumeFor(values);
-}
-
 void Texslice3dRenderer::draw(DrawContext& ctx, const ParameterValues& values) const {
     const Volume& v = ctx.volume();
     const glm::dvec3 ext = v.extent(), n = ctx.camera().forward;

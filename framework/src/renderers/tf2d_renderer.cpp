@@ -16,8 +16,4 @@ std::vector<ParameterSpec> Tf2dRenderer::parameters() const {
     return p;
 }
 
-std::optional<GradientEstimator> Tf2dRenderer::precomputedGradients(const ParameterValues& values) const {
-    return gradientVolumeFor(values);
-}
-
 }  // namespace voxlab

@@ -69,6 +69,7 @@ public:
     // Smallest and largest voxel value (computed once, at construction).
     double minValue() const { return min_; }
     double maxValue() const { return max_; }
+    glm::dvec2 valueRange() const { return {min_, max_}; }
 
     // Histogram over [minValue, maxValue].
     Histogram histogram(int bins = 256) const;

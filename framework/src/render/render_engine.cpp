@@ -134,7 +134,7 @@ void RenderEngine::setVolume(const Volume& volume) {
 }
 
 void RenderEngine::uploadTransferFunction(TransferFunctionSlot& slot, const TransferFunction& tf) {
-    const glm::dvec2 range(volume_->minValue(), volume_->maxValue());
+    const glm::dvec2 range = volume_->valueRange();
     if (slot.table.size > 0 && tf.points() == slot.points && range == slot.range) return;  // still right
     // The table spans the data's value range; bake() sizes it so that linear
     // interpolation stays within half a grey level of the exact function.
@@ -205,7 +205,7 @@ void RenderEngine::setSceneUniforms(const ShaderProgram& prog, const Scene& scen
     prog.set("u_volume_extent", glm::vec3(vol.extent()));
     prog.set("u_value_scale", valueScale_);
     prog.set("u_value_offset", valueOffset_);
-    prog.set("u_value_range", glm::vec2(vol.minValue(), vol.maxValue()));
+    prog.set("u_value_range", glm::vec2(vol.valueRange()));
     prog.set("u_min_spacing", float(vol.minSpacing()));
     prog.set("u_interpolation", int(scene.interpolation));
 
@@ -220,7 +220,7 @@ void RenderEngine::setSceneUniforms(const ShaderProgram& prog, const Scene& scen
 
     prog.set("u_step", float(scene.step * vol.minSpacing()));
     prog.set("u_step_units", float(scene.step));
-    const glm::dvec2 window = scene.window.value_or(glm::dvec2(vol.minValue(), vol.maxValue()));
+    const glm::dvec2 window = scene.window.value_or(vol.valueRange());
     prog.set("u_window", glm::vec2(window));
     prog.set("u_background", scene.background);
 
@@ -282,11 +282,11 @@ private:
 
 void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     const Renderer& renderer = *pass.renderer;
+    const glm::dvec2 window = scene.window.value_or(volume_->valueRange());
     std::optional<TransferFunction> fallback;
     const TransferFunction* tf = pass.transferFunction;
     if (!tf && renderer.needsTransferFunction()) {
-        fallback = fallbackTransferFunction(
-            scene.window.value_or(glm::dvec2(volume_->minValue(), volume_->maxValue())));
+        fallback = fallbackTransferFunction(window);
         tf = &*fallback;
     }
     // Switches are baked into the program (see ShaderConstants): the
@@ -329,9 +329,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     if (scene.transferFunction2D)
         widgets = scene.transferFunction2D->widgets();
     else if (renderer.needsTransferFunction2D())
-        widgets = fallbackTransferFunction2D(
-                      scene.window.value_or(glm::dvec2(volume_->minValue(), volume_->maxValue())))
-                      .widgets();
+        widgets = fallbackTransferFunction2D(window).widgets();
     prog.set("u_tf2d_count", int(widgets.size()));
     for (std::size_t i = 0; i < widgets.size(); ++i) {
         const Tf2dWidget& w = widgets[i];
@@ -400,7 +398,7 @@ unsigned RenderEngine::sliceStack(int axis) {
 void RenderEngine::drawCut(const Scene& scene, unsigned framebuffer) {
     const CuttingPlane& cut = *scene.cuttingPlane;
     const Volume& vol = *volume_;
-    const glm::dvec2 range(vol.minValue(), vol.maxValue());
+    const glm::dvec2 range = vol.valueRange();
     const glm::vec3 point(cut.point.value_or(glm::dvec3(vol.dims()) * 0.5) * vol.spacing());
     const glm::vec3 normal(glm::normalize(cut.normal));
     ensureLayers(scene.width, scene.height);
@@ -455,8 +453,7 @@ void RenderEngine::renderTo(const Scene& scene, unsigned framebuffer) {
     }
     Pass pass;
     pass.renderer = &rendererRegistry().get(scene.renderer);
-    pass.values = pass.renderer->resolveParameters(scene.parameters,
-                                                   glm::dvec2(volume_->minValue(), volume_->maxValue()));
+    pass.values = pass.renderer->resolveParameters(scene.parameters, volume_->valueRange());
     pass.transferFunction = scene.transferFunction ? &*scene.transferFunction : nullptr;
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, scene.width, scene.height);

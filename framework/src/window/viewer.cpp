@@ -50,7 +50,7 @@ void drawPanel(ViewerState& s, RenderEngine& engine, const Volume& volume) {
     }
     // One widget per declared parameter: the panel is generated, never hand-made.
     const Renderer& renderer = rendererRegistry().get(s.scene.renderer);
-    for (const ParameterSpec& p : renderer.parametersFor(glm::dvec2(volume.minValue(), volume.maxValue()))) {
+    for (const ParameterSpec& p : renderer.parametersFor(volume.valueRange())) {
         ImGui::PushID(p.name.c_str());
         double& value = s.scene.parameters.try_emplace(p.name, p.defaultValue).first->second;
         if (p.type == ParameterType::Bool) {
@@ -80,7 +80,7 @@ void drawPanel(ViewerState& s, RenderEngine& engine, const Volume& volume) {
     if (ImGui::Combo("projection", &proj, "orthographic\0perspective\0"))
         s.scene.camera.projection = proj == 0 ? Projection::Orthographic : Projection::Perspective, s.dirty = true;
 
-    glm::dvec2 w = s.scene.window.value_or(glm::dvec2(volume.minValue(), volume.maxValue()));
+    glm::dvec2 w = s.scene.window.value_or(volume.valueRange());
     float lo = float(w.x), hi = float(w.y);
     const float speed = float((volume.maxValue() - volume.minValue()) / 500.0 + 1e-6);
     if (ImGui::DragFloatRange2("window", &lo, &hi, speed, float(volume.minValue()), float(volume.maxValue()))) {

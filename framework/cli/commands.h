@@ -16,6 +16,9 @@ int infoCommand(int argc, char** argv);
 int listCommand(int argc, char** argv);
 int viewCommand(int argc, char** argv);
 int compareCommand(int argc, char** argv);
+int gradeCommand(int argc, char** argv);
+int checkCommand(int argc, char** argv);
+int gradeWorkerCommand(int argc, char** argv);
 
 // Options that describe a scene, shared by `render` and `view`.
 std::vector<OptionSpec> sceneOptions();

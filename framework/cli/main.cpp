@@ -17,6 +17,8 @@ void usage(std::ostream& out) {
            "  info DATASET           dimensions, type, spacing, value range and histogram of a volume\n"
            "  list                   the renderers and their parameters\n"
            "  compare A.png B.png    difference, PSNR and SSIM between two images\n"
+           "  check [--stage S]      check your assignments/ against the expected images\n"
+           "  grade --submission DIR grade a submission (or --batch DIR, a class) against the reference\n"
            "  help                   this text\n\n"
            "Every command takes --help. Datasets are files (.nrrd .nhdr .fld .dat) or phantoms such as\n"
            "phantom:marschner-lobb:64; bare names are also looked up in the project's datasets/ folder.\n";
@@ -38,6 +40,9 @@ int main(int argc, char** argv) {
         if (command == "list") return listCommand(argc, argv);
         if (command == "view") return viewCommand(argc, argv);
         if (command == "compare") return compareCommand(argc, argv);
+        if (command == "grade") return gradeCommand(argc, argv);
+        if (command == "check") return checkCommand(argc, argv);
+        if (command == "grade-worker") return gradeWorkerCommand(argc, argv);
         if (command == "help" || command == "--help" || command == "-h") {
             usage(std::cout);
             return 0;

@@ -164,7 +164,8 @@ ShaderLibrary::ShaderLibrary(std::vector<std::string> searchPath) : searchPath_(
 ShaderLibrary ShaderLibrary::forImplementation(const std::string& implementationRoot) {
     const std::string reference = projectRoot() + "/reference";
     std::vector<std::string> path = {implementationRoot};
-    if (std::filesystem::path(implementationRoot).lexically_normal() != std::filesystem::path(reference).lexically_normal())
+    if (std::filesystem::is_directory(reference) &&
+        std::filesystem::path(implementationRoot).lexically_normal() != std::filesystem::path(reference).lexically_normal())
         path.push_back(reference);
     path.push_back(projectRoot() + "/shaders");
     return ShaderLibrary(path);

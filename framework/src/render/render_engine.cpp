@@ -54,7 +54,9 @@ namespace {
 
 // A mistyped implementation folder must not quietly render the reference.
 std::string checkedImplementationRoot(const std::string& root) {
-    if (root.empty()) return projectRoot() + "/reference";
+    // A student release has no reference/: the starter code is the default.
+    if (root.empty())
+        return projectRoot() + (std::filesystem::is_directory(projectRoot() + "/reference") ? "/reference" : "/assignments");
     if (!std::filesystem::is_directory(root))
         throw Error("implementation root '" + root + "' is not a folder");
     return root;

@@ -4,6 +4,7 @@
 
 #include "voxlab/camera.h"
 #include "voxlab/proxy_geometry.h"
+#include "voxlab/stage_library.h"
 #include "voxlab/renderers.h"
 #include "voxlab/shader.h"
 #include "voxlab/volume.h"
@@ -29,7 +30,7 @@ std::vector<ParameterSpec> Texslice2dRenderer::parameters() const {
 void Texslice2dRenderer::draw(DrawContext& ctx, const ParameterValues& values) const {
     const Volume& v = ctx.volume();
     const glm::dvec3 ext = v.extent(), forward = ctx.camera().forward;
-    const int a = chooseSliceAxis(forward), b = (a + 1) % 3, c = (a + 2) % 3;
+    const int a = cppStages().chooseSliceAxis(forward), b = (a + 1) % 3, c = (a + 2) % 3;
     const int perVoxel = int(values.at("slices_per_voxel"));
     const int count = v.dims()[a] * perVoxel;
     const double spacing = v.spacing()[a] / perVoxel;

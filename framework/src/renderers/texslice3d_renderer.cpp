@@ -4,6 +4,7 @@
 
 #include "voxlab/camera.h"
 #include "voxlab/proxy_geometry.h"
+#include "voxlab/stage_library.h"
 #include "voxlab/renderers.h"
 #include "voxlab/shader.h"
 #include "voxlab/volume.h"
@@ -39,7 +40,7 @@ void Texslice3dRenderer::draw(DrawContext& ctx, const ParameterValues& values) c
     const int count = int(std::floor((farthest - nearest) / step + 0.5));
     std::vector<std::vector<glm::dvec3>> polygons;
     for (int k = count - 1; k >= 0; --k)  // back to front
-        polygons.push_back(planeBoxPolygon(n, nearest + (k + 0.5) * step, glm::dvec3(0.0), ext));
+        polygons.push_back(cppStages().planeBoxPolygon(n, nearest + (k + 0.5) * step, glm::dvec3(0.0), ext));
     drawSlicePolygons(ctx, polygons, values.at("wireframe") != 0.0);
 }
 

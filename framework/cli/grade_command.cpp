@@ -1,0 +1,188 @@
+// voxlab grade / voxlab check: the grader's command line (see grader.h).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <thread>
+
+#include "commands.h"
+#include "voxlab/error.h"
+#include "voxlab/grader.h"
+#include "voxlab/html_report.h"
+
+namespace voxlab::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::vector<OptionSpec> limitOptions() {
+    return {{"stage", "S", "grade only stage S (repeatable; default: every stage)"},
+            {"out", "DIR", "report folder"},
+            {"jobs", "N", "stages graded at once, each in its own process (default: the CPU count)"},
+            {"time-limit", "SECONDS", "per stage and submission (default 60)"},
+            {"memory-limit", "MIB", "address space per stage process (default 4096)"},
+            {"quiet", "", "no progress bar"},
+            {"help", "", "show this help"}};
+}
+
+GraderOptions limitsFrom(const Args& args) {
+    GraderOptions o;
+    o.stages = args.getAll("stage");
+    o.jobs = args.get("jobs") ? parseInt(*args.get("jobs"), "--jobs")
+                              : int(std::max(1u, std::thread::hardware_concurrency()));
+    if (o.jobs < 1 || o.jobs > 256) throw Error("option --jobs: must be in 1..256");
+    if (args.get("time-limit")) o.timeLimit = parseNumber(*args.get("time-limit"), "--time-limit");
+    if (!(o.timeLimit > 0 && o.timeLimit <= 86400)) throw Error("option --time-limit: must be in (0, 86400] seconds");
+    if (args.get("memory-limit")) {
+        const double mib = parseNumber(*args.get("memory-limit"), "--memory-limit");
+        if (!(mib >= 256 && mib <= 1 << 20)) throw Error("option --memory-limit: must be in 256..1048576 MiB");
+        o.memoryLimit = std::size_t(mib) << 20;
+    }
+    o.progress = !args.has("quiet");
+    return o;
+}
+
+std::string csvField(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+}
+
+// One row per submission: total, then each stage's score.
+void writeGradebook(const std::vector<json>& reports, const std::string& path) {
+    std::ofstream csv(path);
+    if (!csv) throw Error(path + ": cannot write the gradebook");
+    csv << "name,score,max_score";
+    if (!reports.empty())
+        for (const json& s : reports[0]["stages"]) csv << "," << csvField(s.value("stage", "?"));
+    csv << ",problems\n";
+    for (const json& r : reports) {
+        char total[64];
+        std::snprintf(total, sizeof total, "%.2f,%.2f", r.value("score", 0.0), r.value("max_score", 0.0));
+        csv << csvField(r.value("name", "?")) << "," << total;
+        std::string problems;
+        for (const json& s : r["stages"]) {
+            char score[32];
+            std::snprintf(score, sizeof score, "%.2f", s.value("score", 0.0));
+            csv << "," << score;
+            const std::string status = s.value("status", "");
+            if (status != "passed" && status != "example" && status != "failed")
+                problems += (problems.empty() ? "" : "; ") + s.value("stage", "?") + ": " + status;
+        }
+        csv << "," << csvField(problems) << "\n";
+    }
+}
+
+}  // namespace
+
+int gradeCommand(int argc, char** argv) {
+    std::vector<OptionSpec> specs = {
+        {"submission", "DIR", "a submission folder, shaped like assignments/"},
+        {"batch", "DIR", "grade every submission folder inside DIR (a class)"},
+        {"reference", "DIR", "the reference solution (default: the project's reference/)"},
+        {"render-expected", "DIR", "only render the reference's expected outputs into DIR (for a student release)"}};
+    for (const OptionSpec& s : limitOptions()) specs.push_back(s);
+    const Args args(specs, argc, argv, 2, "grade");
+    if (args.get("render-expected") && !args.has("submission") && !args.has("batch")) {
+        GraderOptions options = limitsFrom(args);
+        options.referenceRoot = args.get("reference").value_or(projectRoot() + "/reference");
+        options.expectedDir = *args.get("render-expected");
+        renderExpectedOutputs(options);
+        std::cout << options.expectedDir << "\n";
+        return 0;
+    }
+    if (args.has("help") || args.has("submission") == args.has("batch")) {
+        std::cout << "usage: voxlab grade --submission DIR [--stage S]... [--out REPORT_DIR]\n"
+                     "       voxlab grade --batch DIR [--out DIR] [--jobs N]\n\n"
+                     "Grades a submission stage by stage against the reference solution: every grading scene\n"
+                     "(reference/<stage>/grading.json) is rendered by both and compared (pixel difference, SSIM,\n"
+                     "FLIP), and function checks run on random inputs. Each stage runs in its own process with a\n"
+                     "time limit and a memory cap. Writes REPORT_DIR/index.html (open it in a browser),\n"
+                     "report.json and results.json (Gradescope). --batch grades each folder of DIR into\n"
+                     "OUT/<name>/ and writes OUT/gradebook.csv and OUT/index.html.\n\n"
+                  << formatOptions(specs);
+        return args.has("help") ? 0 : 2;
+    }
+    GraderOptions options = limitsFrom(args);
+    options.referenceRoot = args.get("reference").value_or(projectRoot() + "/reference");
+    const fs::path out = args.get("out").value_or("grade-report");
+    options.expectedDir = (out / ".expected").string();
+
+    std::vector<Submission> submissions;
+    if (args.has("submission")) {
+        const fs::path folder = *args.get("submission");
+        if (!fs::is_directory(folder)) throw Error(folder.string() + ": no such folder");
+        fs::path normal = fs::absolute(folder).lexically_normal();
+        if (normal.filename().empty()) normal = normal.parent_path();  // "alice/"
+        submissions.push_back({normal.filename().string(), folder.string(), out.string()});
+    } else {
+        const fs::path batch = *args.get("batch");
+        if (!fs::is_directory(batch)) throw Error(batch.string() + ": no such folder");
+        for (const auto& entry : fs::directory_iterator(batch))
+            if (entry.is_directory() && entry.path().filename().string()[0] != '.')
+                submissions.push_back({entry.path().filename().string(), entry.path().string(),
+                                       (out / entry.path().filename()).string()});
+        std::sort(submissions.begin(), submissions.end(),
+                  [](const Submission& a, const Submission& b) { return a.name < b.name; });
+        if (submissions.empty()) throw Error(batch.string() + ": no submission folders inside");
+    }
+    fs::create_directories(out);
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<json> reports = gradeSubmissions(submissions, options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (args.has("submission")) {
+        std::cout << summaryTable(reports[0]) << "report: " << (out / "index.html").string() << "\n";
+    } else {
+        writeGradebook(reports, (out / "gradebook.csv").string());
+        json gradebook = {{"submissions", reports}, {"elapsed_s", seconds}};
+        writeClassHtmlReport(gradebook, out.string());
+        for (const json& r : reports)
+            std::printf("%-24s %7.2f / %g\n", r.value("name", "?").c_str(), r.value("score", 0.0),
+                        r.value("max_score", 0.0));
+        std::printf("%zu submissions graded in %.1f s; gradebook: %s\n", reports.size(), seconds,
+                    (out / "gradebook.csv").string().c_str());
+    }
+    return 0;
+}
+
+int checkCommand(int argc, char** argv) {
+    std::vector<OptionSpec> specs = {{"submission", "DIR", "the tree to check (default: the project's assignments/)"}};
+    for (const OptionSpec& s : limitOptions()) specs.push_back(s);
+    const Args args(specs, argc, argv, 2, "check");
+    if (args.has("help")) {
+        std::cout << "usage: voxlab check [--stage S]... [--out DIR]\n\n"
+                     "Checks your work in assignments/ the way the grader will: every grading scene of each\n"
+                     "stage is rendered with your code and compared with the expected image (shipped in\n"
+                     "expected/ with a student release, else rendered from reference/). Prints a table and\n"
+                     "writes DIR/index.html (default voxlab-check/) with your image, the expected one and a\n"
+                     "heat map of the differences for every scene. Exit status 0 when every stage checked passes.\n\n"
+                  << formatOptions(specs);
+        return 0;
+    }
+    GraderOptions options = limitsFrom(args);
+    options.isolateStage = false;
+    const fs::path root = projectRoot();
+    const fs::path out = args.get("out").value_or("voxlab-check");
+    const std::string tree = args.get("submission").value_or((root / "assignments").string());
+    if (fs::is_directory(root / "expected")) {
+        options.shipped = true;
+        options.referenceRoot = tree;
+        options.expectedDir = (root / "expected").string();
+    } else {
+        options.referenceRoot = (root / "reference").string();
+        options.expectedDir = (out / ".expected").string();
+    }
+    fs::create_directories(out);
+    const std::vector<json> reports = gradeSubmissions({{"your work", tree, out.string()}}, options);
+    std::cout << summaryTable(reports[0]) << "report: " << (out / "index.html").string() << "\n";
+    for (const json& s : reports[0]["stages"])
+        if (s.value("status", "") != "passed" && s.value("status", "") != "example") return 1;
+    return 0;
+}
+
+}  // namespace voxlab::cli

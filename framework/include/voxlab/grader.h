@@ -1,0 +1,70 @@
+// voxlab: the grader. It grades submissions stage by stage against the
+// reference solution (or, for a student's self-check, against the golden
+// outputs shipped with a student release).
+//
+// For each submission and stage, in its own child process (child_process.h)
+// with a time limit, a memory cap and writes confined to the stage's report
+// folder, the stage's scenes are rendered and its function checks run; the
+// parent then compares them with the expected outputs (grading.h) and
+// writes, per submission:
+//   REPORT/report.json    everything, for tools (schema in html_report.h)
+//   REPORT/results.json   Gradescope's autograder format
+//   REPORT/index.html     reference | submission | FLIP heat map | difference
+//                         for every scene, with the metrics; offline
+//   REPORT/<stage>/       the images
+// When grading, a stage runs with only that stage taken from the
+// submission: every other stage comes from the reference, so one mistake
+// is not counted twice. A self-check runs the student's whole tree.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace voxlab {
+
+struct GraderOptions {
+    std::string voxlab;           // the executable that runs workers; empty: this one
+    std::string referenceRoot;    // grading manifests and, when rendering them, the expected outputs
+    std::string expectedDir;      // expected outputs: rendered here from referenceRoot unless `shipped`
+    bool shipped = false;         // expectedDir already holds the outputs (a release's goldens, or
+                                  // an earlier renderExpectedOutputs): do not render them again
+    bool isolateStage = true;     // false for a self-check: the submission's whole tree runs
+    std::vector<std::string> stages;  // empty: every stage with a manifest, in teaching order
+    double timeLimit = 60.0;          // seconds per stage
+    std::size_t memoryLimit = std::size_t(4) << 30;
+    int jobs = 1;                 // stages graded at once (each a process)
+    int renderThreads = 0;        // llvmpipe threads per process; 0: $LP_NUM_THREADS, else cores / jobs
+    bool progress = true;         // a progress bar on stderr
+};
+
+struct Submission {
+    std::string name;    // shown in reports and the gradebook
+    std::string folder;  // shaped like assignments/
+    std::string reportDir;
+    std::vector<std::string> stages;  // empty: the options' stages
+};
+
+// Renders the expected outputs of `options.stages` from the reference into
+// options.expectedDir (what a student release ships as goldens).
+void renderExpectedOutputs(const GraderOptions& options);
+
+// Grades every submission; returns their report.json contents, in order.
+// Never throws for anything a submission does.
+std::vector<nlohmann::json> gradeSubmissions(const std::vector<Submission>& submissions,
+                                             const GraderOptions& options);
+
+// Gradescope's results.json for a report.
+nlohmann::json gradescopeResults(const nlohmann::json& report);
+
+// A terminal table: stage, status, score, message.
+std::string summaryTable(const nlohmann::json& report);
+
+// The stage names graded by default: those in teaching order that have a
+// grading.json under `root`.
+std::vector<std::string> gradedStages(const std::string& root);
+
+}  // namespace voxlab

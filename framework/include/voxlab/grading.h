@@ -1,0 +1,106 @@
+// voxlab: grading a stage — its manifest, the tolerances, and the score.
+//
+// Each stage folder (reference/<stage>/, mirrored in assignments/) holds a
+// manifest, grading.json:
+//
+//   {
+//     "title": "Maximum intensity projection",
+//     "points": 10,
+//     "about": "what the scenes test",
+//     "scenes": [ {"name": "bonsai_oblique", "scene": "scenes/bonsai_oblique.json",
+//                  "weight": 1, "tolerance": {"max_flip": 0.03, "why": "..."}} ],
+//     "checks": [ {"name": "phong_random", "weight": 1} ]     // function_checks.h
+//   }
+//
+// A scene is rendered by the submission and by the reference (or read from
+// the shipped golden image) and compared on the 8-bit images:
+//   fraction_over  share of pixels where some channel differs by more than
+//                  max_difference grey levels; must be <= max_fraction;
+//   ssim           mean SSIM (image_metrics.h); must be >= min_ssim;
+//   flip_mean      mean FLIP error (flip.h); must be <= max_flip;
+//   psnr, ssim_min, flip_max, max_difference: shown, not scored.
+// Each scored metric gives a ratio r = its value / its bound (for SSIM,
+// (1 - ssim) / (1 - min_ssim)); the worst ratio decides. A scene passes at
+// r <= 1 and earns full credit; its credit then falls linearly to zero at
+// r = 3 ("three times the threshold"). A function check passes when every
+// case matches the reference; its credit falls linearly with the share of
+// failing cases, to zero at 10% (a wrong light vector fails only the cases
+// with a highlight, about 15%). A stage's score is its points times the
+// weighted mean credit of its scenes and checks.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "voxlab/image.h"
+
+namespace voxlab {
+
+// The default tolerances, in one place. Calibrated so that the reference
+// passes against itself rendered another way (hardware instead of explicit
+// trilinear filtering, another llvmpipe thread count), and every mutant in
+// tests/mutants/ fails (see tests/test_grader_mutants.cpp).
+struct Tolerance {
+    double maxDifference = 4.0;  // grey levels of 255
+    double maxFraction = 0.005;
+    double minSsim = 0.98;
+    double maxFlip = 0.02;
+};
+
+struct GradedScene {
+    std::string name;
+    std::string scenePath;  // absolute
+    double weight = 1.0;
+    Tolerance tolerance;
+};
+
+struct GradedCheck {
+    std::string name;
+    double weight = 1.0;
+};
+
+struct StageManifest {
+    std::string stage;
+    std::string title;
+    std::string about;
+    double points = 10.0;
+    std::vector<GradedScene> scenes;
+    std::vector<GradedCheck> checks;
+};
+
+// The stages in teaching order (the folder names in reference/).
+const std::vector<std::string>& stageOrder();
+
+// Reads ROOT/<stage>/grading.json. Errors name the file and the key.
+StageManifest loadStageManifest(const std::string& root, const std::string& stage);
+
+struct ImageMetrics {
+    double fractionOver = 0.0;
+    double maxDifference = 0.0;  // grey levels
+    double ssim = 1.0, ssimMin = 1.0;
+    double flipMean = 0.0, flipMax = 0.0;
+    double psnr = 0.0;           // dB; infinity for equal images
+};
+
+// Compares `submission` with `expected` (both as read from PNG). When
+// `flipMap` is given it receives the FLIP heat map (magma colours).
+ImageMetrics compareForGrading(const Image& expected, const Image& submission, const Tolerance& tolerance,
+                               Image* flipMap = nullptr, Image* differenceMap = nullptr);
+
+// The worst ratio of a metric to its bound (see above), and the credit in [0, 1].
+double toleranceRatio(const ImageMetrics& m, const Tolerance& t);
+double creditForRatio(double ratio);
+double creditForFailedCases(double failedFraction);
+
+nlohmann::json toJson(const ImageMetrics& m);
+nlohmann::json toJson(const Tolerance& t);
+
+// The functions of a stage's files that still hold the starter code's stub
+// (a `not_implemented();` call in GLSL, `throw NotImplemented(` in C++), by
+// name, in file order.
+std::vector<std::string> unimplementedFunctions(const std::string& stageFolder);
+
+}  // namespace voxlab

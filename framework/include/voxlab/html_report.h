@@ -1,0 +1,57 @@
+// voxlab: the grader's HTML reports, readable offline (no external CSS,
+// scripts, fonts or URLs; images are relative links into the report folder).
+//
+// A submission's report is written from its results (report.json). Every
+// field may be missing except those marked *; image paths are relative to
+// the report folder:
+//
+//   {
+//     "submission": "/path/to/alice", "name": "alice", "graded_at": "2026-11-22T07:10:00Z",
+//     "mode": "grade | check", "machine": "Mesa llvmpipe ...", "sandbox": "how writes were confined",
+//     "elapsed_s": 41.2,
+//     "score": 87.5, "max_score": 140,
+//     "stages": [
+//       {"stage"*: "mip", "title": "Maximum intensity projection", "about": "what the stage tests",
+//        "score"*: 8.2, "max_score"*: 10,
+//        "status"*: "passed | failed | not_implemented | compile_error | timeout | crashed | error | example",
+//        "message": "one line", "log": "compiler log, mapped to the student's files", "elapsed_s": 3.1,
+//        "scenes": [
+//          {"name"*: "bonsai_oblique", "score": 1.6, "max_score": 2, "status"*: "passed | failed | error",
+//           "message": "one line",
+//           "images": {"reference": "mip/x.reference.png", "submission": "mip/x.submission.png",
+//                      "flip": "mip/x.flip.png", "difference": "mip/x.difference.png"},
+//           "metrics": {"fraction_over": 0.012, "max_difference": 37, "ssim": 0.973, "ssim_min": 0.41,
+//                       "flip_mean": 0.031, "flip_max": 0.62, "psnr": 31.2},   // psnr null: identical
+//           "tolerance": {"max_difference": 4, "max_fraction": 0.005, "min_ssim": 0.98, "max_flip": 0.02}}],
+//        "checks": [
+//          {"name"*: "phong_random", "description": "...", "score": 0, "max_score": 2, "status"*: "failed",
+//           "message": "37 of 200 cases differ", "examples": ["n=(0,0,1) ... expected (..) got (..)"]}]}
+//     ]
+//   }
+//
+// A class's gradebook is either an array of such results or an object
+// {"title": "...", "graded_at": "...", "submissions": [results, ...]}; each
+// entry needs only "name" (its report is NAME/index.html unless it gives
+// "report", a relative link) and may carry "status" and "message" for the
+// submission as a whole (e.g. "error", "the C++ stages did not build").
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace voxlab {
+
+// Writes reportDir/index.html for one graded submission from its results
+// (the schema above). Image paths in the results are relative to reportDir;
+// an image that is named but not on disk is shown as a placeholder. Creates
+// no folders. Throws voxlab::Error when the file cannot be written.
+void writeHtmlReport(const nlohmann::json& results, const std::string& reportDir);
+
+// Writes dir/index.html for a class: one row per submission (name, score,
+// per-stage scores, status), each linking to its report folder, sortable by
+// clicking a column's heading. Throws voxlab::Error when the file cannot be
+// written.
+void writeClassHtmlReport(const nlohmann::json& gradebook, const std::string& dir);
+
+}  // namespace voxlab

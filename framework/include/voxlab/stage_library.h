@@ -1,0 +1,40 @@
+// voxlab: the C++ student stages, called through a table that a grader can
+// re-point at a submission's code.
+//
+// C++ stages (proxy_geometry.h) are compiled into the framework from the
+// stage root (reference/ by default). The grader and `voxlab check` instead
+// build a submission's stage .cpp files into a shared library together with
+// framework/stage_library/stage_exports.cpp, and load it into the process
+// that renders that submission: every function the library defines then
+// replaces the linked-in one; functions it does not define stay as they were.
+// The framework calls the stages only through cppStages().
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace voxlab {
+
+struct CppStages {
+    std::vector<glm::dvec3> (*planeBoxPolygon)(glm::dvec3 normal, double offset, glm::dvec3 lo, glm::dvec3 hi);
+    int (*chooseSliceAxis)(glm::dvec3 viewDirection);
+};
+
+// The table in use: the linked-in stages unless a library was loaded.
+const CppStages& cppStages();
+
+// Loads a stage library (dlopen) and takes the functions it defines.
+// Returns their names. Throws voxlab::Error naming the library when it
+// cannot be loaded (an undefined symbol, say).
+std::vector<std::string> loadStageLibrary(const std::string& path);
+
+// The command that builds a stage library from `sources` (paths relative to
+// `workingDir`, where it is run) into `output`: the compiler this framework
+// was built with, its headers, position-independent and self-bound
+// (-Bsymbolic), so that calls inside the library stay inside it.
+std::vector<std::string> stageLibraryBuildCommand(const std::vector<std::string>& sources,
+                                                  const std::string& output);
+
+}  // namespace voxlab

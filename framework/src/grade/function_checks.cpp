@@ -1,0 +1,974 @@
+// voxlab: function-level checks for the grader (see function_checks.h).
+//
+// Every check draws its inputs from its own std::mt19937 with a fixed seed.
+// Raw 32-bit outputs are turned into numbers here (uniform() below), never
+// by <random>'s distributions, whose results the standard leaves to each
+// library, and from no transcendental function (whose last bit varies
+// between C libraries). Every random number is drawn in a statement of its
+// own or in a braced list (whose order C++ fixes), and every input is then
+// rounded (to float, or to a grid of powers of two), so that rounding
+// differences between compilers (a fused multiply-add) almost never show.
+// GLSL inputs are stored as the floats the GPU computed with.
+//
+// Random inputs stay away from the places where a function jumps (a flag
+// that flips where a dot product is 0, a voxel boundary for nearest
+// neighbour, a box widget's edge), except where a case puts an input
+// exactly on such a place on purpose, in exact arithmetic: there the
+// documented rule (">= 0 is inside", "ties go to the lower axis") decides,
+// and an implementation that rounds differently elsewhere cannot lose.
+#include "voxlab/function_checks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <map>
+#include <random>
+
+#include "glsl_probe.h"
+#include "voxlab/error.h"
+#include "voxlab/scene.h"
+#include "voxlab/stage_library.h"
+
+namespace voxlab {
+namespace {
+
+using json = nlohmann::json;
+using probe::GlslProbe;
+
+constexpr int kCases = 200;
+
+// ---------------------------------------------------------------------------
+// Inputs
+
+class CheckRandom {
+public:
+    explicit CheckRandom(std::uint32_t seed) : engine_(seed) {}
+    // [0, 1): mt19937's outputs are 32-bit integers, the same on every platform.
+    double uniform() { return double(std::uint32_t(engine_())) / 4294967296.0; }
+    double range(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+    int index(int n) { return int(std::uint32_t(engine_()) % std::uint32_t(n)); }
+    glm::dvec3 inBox(glm::dvec3 lo, glm::dvec3 hi) { return {range(lo.x, hi.x), range(lo.y, hi.y), range(lo.z, hi.z)}; }
+    // Uniform on the sphere: a point of the cube, kept when inside the ball.
+    glm::dvec3 unitVector() {
+        for (;;) {
+            const glm::dvec3 p = inBox(glm::dvec3(-1.0), glm::dvec3(1.0));
+            const double length = glm::length(p);
+            if (length > 0.1 && length <= 1.0) return p / length;
+        }
+    }
+
+private:
+    std::mt19937 engine_;
+};
+
+double f32(double x) { return double(float(x)); }
+glm::dvec3 f32(glm::dvec3 v) { return glm::dvec3(glm::vec3(v)); }
+glm::dvec3 unitF32(glm::dvec3 v) { return f32(glm::normalize(v)); }
+glm::vec4 texel(glm::dvec3 v, double w = 0.0) { return glm::vec4(glm::vec3(v), float(w)); }
+
+json vecJson(glm::dvec3 v) { return json::array({v.x, v.y, v.z}); }
+glm::dvec3 vecOf(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+
+// Outputs: a NaN or an infinity becomes null here already, so a result
+// reads the same before and after a trip through a file.
+json number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+json numbers(std::initializer_list<float> values) {
+    json a = json::array();
+    for (float v : values) a.push_back(number(v));
+    return a;
+}
+
+json checkJson(const std::string& name, const std::string& stage) {
+    return {{"check", name}, {"stage", stage}, {"not_implemented", false}, {"cases", json::array()}};
+}
+
+void addCase(json& check, const std::string& function, json input, json output) {
+    check["cases"].push_back({{"function", function}, {"input", std::move(input)}, {"output", std::move(output)}});
+}
+
+std::string checkedRoot(const std::string& implementationRoot) {
+    if (implementationRoot.empty()) return projectRoot() + "/reference";
+    if (!std::filesystem::is_directory(implementationRoot))
+        throw Error("implementation root '" + implementationRoot + "' is not a folder");
+    return implementationRoot;
+}
+
+// A C++ stage's call: NotImplemented propagates (the stage is a stub);
+// any other exception is that case's output, and fails it.
+json callStage(const std::function<json()>& call) {
+    try {
+        return call();
+    } catch (const NotImplemented&) {
+        throw;
+    } catch (const std::exception& e) {
+        return {{"error", e.what()}};
+    }
+}
+
+// ---------------------------------------------------------------------------
+// phong_random (stage shading)
+
+json runPhong(const std::string& root) {
+    struct Coefficients {
+        double ka, kd, ks, shininess;
+        int blinn;
+    };
+    CheckRandom rng(0x5EED0001u);
+    std::vector<glm::vec4> colours, normals, lights, views;
+    std::vector<Coefficients> coefficients;
+    json check = checkJson("phong_random", "shading");
+    std::vector<json> inputs;
+    for (int i = 0; i < kCases; ++i) {
+        Coefficients c;
+        c.blinn = i % 2;
+        c.ka = f32(rng.range(0.05, 0.4));
+        c.kd = f32(rng.range(0.2, 0.9));
+        c.ks = f32(rng.range(0.1, 1.0));
+        const double u = rng.uniform();
+        c.shininess = f32(1.0 + 127.0 * u * u);  // 1 to 128, more often low
+        const glm::dvec3 colour = f32(rng.inBox(glm::dvec3(0.1), glm::dvec3(1.0)));
+        glm::dvec3 n, l, v;
+        // Where the light reaches the surface (n.l > 0), where it does not
+        // (n.l < 0: no highlight even with the viewer at the mirror
+        // direction), grazing exactly (n.l = 0 in float), and views near the
+        // mirror direction r = 2 (n.l) n - l, where the highlight is.
+        const int kind = (i / 2) % 5;
+        for (;;) {
+            n = unitF32(rng.unitVector());
+            l = unitF32(rng.unitVector());
+            if (kind == 3) {
+                // n along an axis and l across it: n.l is exactly 0.
+                const int axis = rng.index(3);
+                n = glm::dvec3(0.0);
+                n[axis] = rng.index(2) ? 1.0 : -1.0;
+                l[axis] = 0.0;
+                l = unitF32(l);
+                l[axis] = 0.0;
+            } else if (kind != 4) {
+                const double nl = glm::dot(n, l);
+                if (std::abs(nl) < 0.05) continue;
+                if ((kind == 2) != (nl < 0.0)) l = -l;
+            }
+            const glm::dvec3 mirror = 2.0 * glm::dot(n, l) * n - l;
+            if (kind == 0) {
+                v = rng.unitVector();
+                if (glm::dot(v, n) < 0.0) v = -v;
+            } else if (kind == 4) {
+                v = rng.unitVector();
+            } else {
+                const double spread = rng.range(0.0, 0.35);
+                v = mirror + spread * rng.unitVector();
+            }
+            if (glm::length(v) < 0.1) continue;
+            v = unitF32(v);
+            if (kind != 3 && std::abs(glm::dot(n, l)) < 1e-3) continue;
+            if (glm::length(l + v) < 0.1) continue;  // Blinn's half vector would be undefined
+            break;
+        }
+        colours.push_back(texel(colour));
+        normals.push_back(texel(n));
+        lights.push_back(texel(l));
+        views.push_back(texel(v));
+        coefficients.push_back(c);
+        inputs.push_back({{"colour", vecJson(colour)}, {"normal", vecJson(n)}, {"light", vecJson(l)},
+                          {"view", vecJson(v)}, {"ka", c.ka}, {"kd", c.kd}, {"ks", c.ks},
+                          {"shininess", c.shininess}, {"blinn", c.blinn}});
+    }
+    GlslProbe probe(root, "probes/phong_probe.frag");
+    const probe::ProbeResults results =
+        probe.run(kCases, {colours, normals, lights, views}, [&](const ShaderProgram& program, int i) {
+            const Coefficients& c = coefficients[std::size_t(i)];
+            program.set("u_ka", float(c.ka));
+            program.set("u_kd", float(c.kd));
+            program.set("u_ks", float(c.ks));
+            program.set("u_shininess", float(c.shininess));
+            program.set("u_blinn", c.blinn);
+        });
+    for (int i = 0; i < kCases; ++i) {
+        const glm::vec4 r = results.first[std::size_t(i)];
+        addCase(check, "phong", inputs[std::size_t(i)], numbers({r.r, r.g, r.b}));
+    }
+    check["not_implemented"] = results.notImplemented;
+    return check;
+}
+
+// ---------------------------------------------------------------------------
+// Volumes for trilinear_random_points and gradient_random_points
+
+probe::ProbeVolume randomVolume(CheckRandom& rng, glm::ivec3 dims, glm::dvec3 spacing, double scale, double offset) {
+    probe::ProbeVolume volume;
+    volume.dims = dims;
+    volume.extent = glm::vec3(glm::dvec3(dims) * spacing);
+    volume.values.resize(std::size_t(dims.x) * dims.y * dims.z);
+    for (float& v : volume.values) v = float(rng.uniform());
+    volume.valueScale = float(scale);
+    volume.valueOffset = float(offset);
+    return volume;
+}
+
+json volumeJson(const probe::ProbeVolume& volume) {
+    json values = json::array();
+    for (float v : volume.values) values.push_back(double(v));
+    return {{"dims", {volume.dims.x, volume.dims.y, volume.dims.z}},
+            {"extent", vecJson(glm::dvec3(volume.extent))},
+            {"value_scale", double(volume.valueScale)},
+            {"value_offset", double(volume.valueOffset)},
+            {"values", values},
+            {"layout", "x fastest; voxel (i,j,k) is centred at (i+1/2, j+1/2, k+1/2) * extent / dims; "
+                       "value = values * value_scale + value_offset"}};
+}
+
+// ---------------------------------------------------------------------------
+// trilinear_random_points (stage sampling)
+
+json runTrilinear(const std::string& root) {
+    CheckRandom rng(0x5EED0002u);
+    const glm::ivec3 dims(7, 5, 6);
+    const probe::ProbeVolume volume = randomVolume(rng, dims, glm::dvec3(0.8, 1.3, 1.0), 2.0, -0.5);
+    const glm::dvec3 extent(volume.extent), spacing = extent / glm::dvec3(dims);
+    std::vector<glm::vec4> points;
+    for (int i = 0; i < kCases; ++i) {
+        glm::dvec3 p;
+        switch (i % 4) {
+        case 0:  // anywhere in the box
+            p = rng.inBox(glm::dvec3(0.0), extent);
+            break;
+        case 1: {  // near a face, or on it
+            p = rng.inBox(glm::dvec3(0.0), extent);
+            const int axis = rng.index(3);
+            const double inset = rng.index(2) == 0 ? 0.0 : rng.range(0.0, 0.02) * spacing[axis];
+            p[axis] = rng.index(2) ? extent[axis] - inset : inset;
+            break;
+        }
+        case 2: {  // on a voxel centre
+            const glm::dvec3 voxel{double(rng.index(dims.x)), double(rng.index(dims.y)), double(rng.index(dims.z))};
+            p = (voxel + 0.5) * spacing;
+            break;
+        }
+        default: {  // up to half a voxel outside a face: the border value continues
+            p = rng.inBox(glm::dvec3(0.0), extent);
+            const int axis = rng.index(3);
+            const double outside = rng.range(0.001, 0.5) * spacing[axis];
+            p[axis] = rng.index(2) ? extent[axis] + outside : -outside;
+        }
+        }
+        // Nearest neighbour jumps at the voxel boundaries inside the grid:
+        // keep a thousandth of a voxel away from them.
+        for (int a = 0; a < 3; ++a) {
+            const double c = p[a] / spacing[a], k = std::round(c);
+            if (k >= 1.0 && k <= dims[a] - 1.0 && std::abs(c - k) < 1e-3) p[a] += 2e-3 * spacing[a];
+        }
+        points.push_back(texel(f32(p)));
+    }
+    GlslProbe probe(root, "probes/sampling_probe.frag");
+    probe.setVolume(volume);
+    const probe::ProbeResults results = probe.run(kCases, {points});
+    json check = checkJson("trilinear_random_points", "sampling");
+    check["fixture"] = {{"volume", volumeJson(volume)}};
+    for (int f = 0; f < 2; ++f)
+        for (int i = 0; i < kCases; ++i) {
+            const glm::vec4 r = results.first[std::size_t(i)];
+            addCase(check, f == 0 ? "sample_trilinear" : "sample_nearest",
+                    {{"point", vecJson(glm::dvec3(glm::vec3(points[std::size_t(i)])))}}, number(f == 0 ? r.x : r.y));
+        }
+    check["not_implemented"] = results.notImplemented;
+    return check;
+}
+
+// ---------------------------------------------------------------------------
+// gradient_random_points (stage gradient)
+
+json runGradient(const std::string& root) {
+    CheckRandom rng(0x5EED0003u);
+    const glm::ivec3 dims(6, 7, 5);
+    probe::ProbeVolume volume = randomVolume(rng, dims, glm::dvec3(1.2, 0.7, 1.0), 3.0, 1.0);
+    // The samples come from the GPU's own trilinear filtering (the program
+    // is built with u_interpolation = 2), not from the submission's
+    // sampling stage, so that this check sees the gradient stage alone.
+    volume.linearFilter = true;
+    const glm::dvec3 extent(volume.extent), spacing = extent / glm::dvec3(dims);
+    std::vector<glm::vec4> points;
+    for (int i = 0; i < kCases; ++i) {
+        glm::dvec3 p = rng.inBox(glm::dvec3(0.0), extent);
+        const int axis = rng.index(3);
+        switch (i % 4) {
+        case 1: {  // within one and a half voxels of a face: the clamped, one-sided differences
+            const double inset = rng.range(0.0, 1.5) * spacing[axis];
+            p[axis] = rng.index(2) ? extent[axis] - inset : inset;
+            break;
+        }
+        case 2:  // on a face
+            p[axis] = rng.index(2) ? extent[axis] : 0.0;
+            break;
+        case 3:  // on a voxel centre
+            p = glm::dvec3{double(rng.index(dims.x)), double(rng.index(dims.y)), double(rng.index(dims.z))};
+            p = (p + 0.5) * spacing;
+            break;
+        default:  // anywhere in the box
+            break;
+        }
+        points.push_back(texel(f32(p)));
+    }
+    GlslProbe probe(root, "probes/gradient_probe.frag", {{"u_interpolation", 2}});
+    probe.setVolume(volume);
+    const probe::ProbeResults results = probe.run(kCases, {points});
+    json check = checkJson("gradient_random_points", "gradient");
+    check["fixture"] = {{"volume", volumeJson(volume)}, {"interpolation", "hardware"},
+                        {"min_spacing", double(std::min({float(spacing.x), float(spacing.y), float(spacing.z)}))}};
+    for (int f = 0; f < 2; ++f)
+        for (int i = 0; i < kCases; ++i) {
+            const glm::vec4 r = (f == 0 ? results.first : results.second)[std::size_t(i)];
+            addCase(check, f == 0 ? "gradient_central" : "gradient_sobel",
+                    {{"point", vecJson(glm::dvec3(glm::vec3(points[std::size_t(i)])))}}, numbers({r.x, r.y, r.z}));
+        }
+    check["not_implemented"] = results.notImplemented;
+    return check;
+}
+
+// ---------------------------------------------------------------------------
+// half_space_random (stage cutting_plane)
+
+json runHalfSpace(const std::string& root) {
+    CheckRandom rng(0x5EED0004u);
+    std::vector<glm::vec4> planePoints, planeNormals, tested, origins, directions;
+    for (int i = 0; i < kCases; ++i) {
+        // Kinds: 0, 1 a random plane; 2 an axis-aligned plane and a ray
+        // parallel to it; 3 an axis-aligned plane and a point exactly on it.
+        const int kind = i % 4;
+        const int axis = rng.index(3);
+        glm::dvec3 normal = unitF32(rng.unitVector());
+        if (kind >= 2) {
+            normal = glm::dvec3(0.0);
+            normal[axis] = rng.index(2) ? 1.0 : -1.0;
+        }
+        const glm::dvec3 point = f32(rng.inBox(glm::dvec3(-1.0), glm::dvec3(2.0)));
+        glm::dvec3 p;
+        for (;;) {
+            p = f32(rng.inBox(glm::dvec3(-2.0), glm::dvec3(3.0)));
+            if (kind == 3) p[axis] = point[axis];
+            if (kind == 3 || std::abs(glm::dot(p - point, normal)) >= 1e-3) break;
+        }
+        glm::dvec3 origin, direction;
+        double tEntry, tExit;
+        for (;;) {
+            origin = f32(rng.inBox(glm::dvec3(-2.0), glm::dvec3(3.0)));
+            direction = rng.unitVector();
+            if (kind == 2) direction[axis] = 0.0;
+            if (glm::length(direction) < 0.1) continue;
+            direction = unitF32(direction);
+            if (kind == 2) direction[axis] = 0.0;
+            tEntry = f32(rng.range(0.0, 2.0));
+            tExit = f32(tEntry + rng.range(0.05, 4.0));
+            const double along = glm::dot(direction, normal), start = glm::dot(origin - point, normal);
+            if (std::abs(start) < 1e-3) continue;
+            if (kind == 2) break;
+            if (std::abs(along) < 0.05) continue;
+            const double crossing = -start / along;
+            if (std::abs(crossing - tEntry) >= 1e-3 && std::abs(crossing - tExit) >= 1e-3) break;
+        }
+        planePoints.push_back(texel(point));
+        planeNormals.push_back(texel(normal));
+        tested.push_back(texel(p));
+        origins.push_back(texel(origin, tEntry));
+        directions.push_back(texel(direction, tExit));
+    }
+    GlslProbe probe(root, "probes/half_space_probe.frag");
+    const probe::ProbeResults results = probe.run(kCases, {planePoints, planeNormals, tested, origins, directions});
+    json check = checkJson("half_space_random", "cutting_plane");
+    auto flag = [](float v) { return std::isfinite(v) ? json(v != 0.0f) : json(nullptr); };
+    for (int i = 0; i < kCases; ++i) {
+        const std::size_t k = std::size_t(i);
+        addCase(check, "in_half_space",
+                {{"p", vecJson(glm::vec3(tested[k]))},
+                 {"point", vecJson(glm::vec3(planePoints[k]))},
+                 {"normal", vecJson(glm::vec3(planeNormals[k]))}},
+                flag(results.first[k].x));
+    }
+    for (int i = 0; i < kCases; ++i) {
+        const std::size_t k = std::size_t(i);
+        const glm::vec4 r = results.first[k];
+        addCase(check, "clip_to_half_space",
+                {{"origin", vecJson(glm::vec3(origins[k]))},
+                 {"direction", vecJson(glm::vec3(directions[k]))},
+                 {"t_entry", double(origins[k].w)},
+                 {"t_exit", double(directions[k].w)},
+                 {"point", vecJson(glm::vec3(planePoints[k]))},
+                 {"normal", vecJson(glm::vec3(planeNormals[k]))}},
+                {{"kept", flag(r.y)}, {"t_entry", number(r.z)}, {"t_exit", number(r.w)}});
+    }
+    check["not_implemented"] = results.notImplemented;
+    return check;
+}
+
+// ---------------------------------------------------------------------------
+// tf2d_classify_random (stage tf2d)
+
+struct Tf2dProbeWidget {
+    bool box = false;
+    glm::dvec4 shape{0.0};  // as the shader gets it (tf2d_widgets.glsl)
+    glm::dvec3 colour{0.0};
+    double alpha = 0.0;
+};
+
+// The widget in the JSON form of voxlab/transfer_function_2d.h.
+json widgetJson(const Tf2dProbeWidget& w) {
+    if (w.box)
+        return {{"type", "box"}, {"value", {w.shape.x, w.shape.y}}, {"gradient", {w.shape.z, w.shape.w}},
+                {"alpha", w.alpha}, {"color", vecJson(w.colour)}};
+    return {{"type", "triangle"}, {"value", w.shape.x}, {"radius", w.shape.y}, {"alpha", w.alpha},
+            {"color", vecJson(w.colour)}};
+}
+
+json runTf2d(const std::string& root) {
+    CheckRandom rng(0x5EED0005u);
+    std::vector<std::vector<Tf2dProbeWidget>> widgetSets;
+    std::vector<glm::vec4> points;
+    for (int i = 0; i < kCases; ++i) {
+        std::vector<Tf2dProbeWidget> widgets(std::size_t(1 + rng.index(4)));
+        for (Tf2dProbeWidget& w : widgets) {
+            w.box = rng.index(2) == 1;
+            if (w.box) {
+                const double v0 = f32(rng.range(0.0, 80.0)), g0 = rng.index(3) == 0 ? 0.0 : f32(rng.range(0.0, 10.0));
+                w.shape = {v0, f32(v0 + rng.range(5.0, 40.0)), g0, f32(g0 + rng.range(2.0, 15.0))};
+            } else {
+                w.shape = {f32(rng.range(10.0, 90.0)), f32(rng.range(0.5, 3.0)), 0.0, 0.0};
+            }
+            w.colour = f32(rng.inBox(glm::dvec3(0.0), glm::dvec3(1.0)));
+            w.alpha = rng.index(8) == 0 ? 1.0 : f32(rng.range(0.1, 1.0));
+        }
+        // Kinds: 0 anywhere; 1, 4 inside a chosen widget; 2 on the value
+        // axis (g = 0), at a triangle's apex or not; 3 exactly on a box's edge.
+        const int kind = i % 5;
+        std::size_t pick = std::size_t(rng.index(int(widgets.size())));
+        if (kind == 2)  // at an apex: prefer a triangle
+            for (std::size_t k = 0; k < widgets.size(); ++k)
+                if (!widgets[k].box) pick = k;
+        const Tf2dProbeWidget& chosen = widgets[pick];
+        double f = 0.0, g = 0.0;
+        for (int attempt = 0;; ++attempt) {
+            f = f32(rng.range(0.0, 100.0));
+            g = f32(rng.range(0.0, 25.0));
+            const glm::dvec4 s = chosen.shape;
+            if (kind == 1 || kind == 4) {
+                if (chosen.box) {
+                    f = f32(rng.range(s.x, s.y));
+                    g = f32(rng.range(s.z, s.w));
+                } else {
+                    g = f32(rng.range(0.5, 20.0));
+                    f = f32(s.x + rng.range(-1.0, 1.0) * s.y * g);
+                }
+            } else if (kind == 2) {
+                g = 0.0;
+                if (!chosen.box && rng.index(2) == 0) f = s.x;
+            } else if (kind == 3 && chosen.box) {
+                const int edge = rng.index(4);
+                if (edge < 2) {
+                    f = edge == 0 ? s.x : s.y;
+                    g = f32(rng.range(s.z, s.w));
+                } else {
+                    f = f32(rng.range(s.x, s.y));
+                    g = edge == 2 ? s.z : s.w;
+                }
+            }
+            // Keep off the boxes' edges, where the opacity jumps, unless
+            // exactly on one.
+            auto near = [](double x, double edge) { return x != edge && std::abs(x - edge) < 1e-3; };
+            bool nearEdge = false;
+            for (const Tf2dProbeWidget& w : widgets)
+                if (w.box)
+                    nearEdge = nearEdge || near(f, w.shape.x) || near(f, w.shape.y) || near(g, w.shape.z) ||
+                               near(g, w.shape.w);
+            if (!nearEdge || attempt > 100) break;
+        }
+        widgetSets.push_back(std::move(widgets));
+        points.push_back(glm::vec4(float(f), float(g), 0.0f, 0.0f));
+    }
+    GlslProbe probe(root, "probes/tf2d_probe.frag");
+    const probe::ProbeResults results = probe.run(kCases, {points}, [&](const ShaderProgram& program, int i) {
+        const std::vector<Tf2dProbeWidget>& widgets = widgetSets[std::size_t(i)];
+        program.set("u_tf2d_count", int(widgets.size()));
+        for (std::size_t k = 0; k < widgets.size(); ++k) {
+            const std::string index = "[" + std::to_string(k) + "]";
+            program.set(("u_tf2d_kind" + index).c_str(), widgets[k].box ? 1 : 0);
+            program.set(("u_tf2d_shape" + index).c_str(), glm::vec4(widgets[k].shape));
+            program.set(("u_tf2d_color" + index).c_str(), glm::vec4(glm::vec3(widgets[k].colour), widgets[k].alpha));
+        }
+    });
+    json check = checkJson("tf2d_classify_random", "tf2d");
+    for (int i = 0; i < kCases; ++i) {
+        const std::size_t k = std::size_t(i);
+        json widgets = json::array();
+        for (const Tf2dProbeWidget& w : widgetSets[k]) widgets.push_back(widgetJson(w));
+        const glm::vec4 r = results.first[k];
+        addCase(check, "tf2d_classify",
+                {{"value", double(points[k].x)}, {"gradient", double(points[k].y)}, {"widgets", widgets}},
+                numbers({r.r, r.g, r.b, r.a}));
+    }
+    check["not_implemented"] = results.notImplemented;
+    return check;
+}
+
+// ---------------------------------------------------------------------------
+// slice_axis_random (stage texslice2d)
+
+json runSliceAxis(const std::string& root) {
+    CheckRandom rng(0x5EED0006u);
+    json check = checkJson("slice_axis_random", "texslice2d");
+
+    // chooseSliceAxis (C++). Exact ties are built from one number with its
+    // sign flipped, so they are ties in any arithmetic.
+    for (int i = 0; i < kCases; ++i) {
+        glm::dvec3 d;
+        const double a = f32(rng.range(0.3, 1.0)), b = f32(a * rng.range(0.0, 0.95));
+        auto sign = [&]() { return rng.index(2) ? 1.0 : -1.0; };
+        switch (i % 5) {
+        case 0:  // any direction, of any length
+            d = f32(rng.unitVector() * std::ldexp(1.0, rng.index(21) - 10));
+            break;
+        case 1:  // the two largest components tie
+            d = glm::dvec3{sign() * a, sign() * a, sign() * b};
+            break;
+        case 2:  // all three tie
+            d = glm::dvec3{sign() * a, sign() * a, sign() * a};
+            break;
+        case 3:  // the two smaller components tie
+            d = glm::dvec3{sign() * a, sign() * b, sign() * b};
+            break;
+        default:  // along an axis, or (once) no direction at all
+            d = glm::dvec3(0.0);
+            if (i != 4) d[rng.index(3)] = sign() * a;
+        }
+        if (i % 5 >= 1 && i % 5 <= 3) {  // a random order of the components
+            const int shift = rng.index(3);
+            d = glm::dvec3(d[shift], d[(shift + 1) % 3], d[(shift + 2) % 3]);
+            if (rng.index(2)) std::swap(d.x, d.y);
+        }
+        const json output = callStage([&] { return json(cppStages().chooseSliceAxis(d)); });
+        addCase(check, "chooseSliceAxis", {{"view_direction", vecJson(d)}}, output);
+    }
+
+    // slice_opacity (GLSL): the stack's axis, the slice spacing and the
+    // unit length are uniforms, set per case.
+    struct Setting {
+        int axis;
+        double sliceSpacing, minSpacing;
+    };
+    std::vector<Setting> settings;
+    std::vector<glm::vec4> inputs;
+    for (int i = 0; i < kCases; ++i) {
+        Setting s{rng.index(3), f32(rng.range(0.3, 2.0)), f32(rng.range(0.3, 2.0))};
+        glm::dvec3 direction;
+        do direction = unitF32(rng.unitVector());
+        while (std::abs(direction[s.axis]) < 0.3);  // drawn stacks face the viewer at least this much
+        const double alpha = i % 10 == 0 ? 0.0 : i % 10 == 1 ? 1.0 : f32(rng.uniform());
+        settings.push_back(s);
+        inputs.push_back(texel(direction, alpha));
+    }
+    GlslProbe probe(root, "probes/slice_opacity_probe.frag");
+    const probe::ProbeResults results = probe.run(kCases, {inputs}, [&](const ShaderProgram& program, int i) {
+        const Setting& s = settings[std::size_t(i)];
+        program.set("u_stack_axis", s.axis);
+        program.set("u_slice_spacing", float(s.sliceSpacing));
+        program.set("u_min_spacing", float(s.minSpacing));
+    });
+    for (int i = 0; i < kCases; ++i) {
+        const std::size_t k = std::size_t(i);
+        addCase(check, "slice_opacity",
+                {{"alpha", double(inputs[k].w)},
+                 {"direction", vecJson(glm::vec3(inputs[k]))},
+                 {"stack_axis", settings[k].axis},
+                 {"slice_spacing", settings[k].sliceSpacing},
+                 {"min_spacing", settings[k].minSpacing}},
+                number(results.first[k].x));
+    }
+    check["not_implemented"] = results.notImplemented;
+    return check;
+}
+
+// ---------------------------------------------------------------------------
+// plane_box_random (stage texslice3d)
+
+json runPlaneBox(const std::string&) {
+    CheckRandom rng(0x5EED0007u);
+    json check = checkJson("plane_box_random", "texslice3d");
+    // Boxes on a grid of 1/64, normals on a grid of 1/256 and points on a
+    // grid of 1/1024, scaled by powers of two: then every offset dot(n, p)
+    // is exact in double, and a plane put through a corner or an edge
+    // really passes through it.
+    auto grid = [](glm::dvec3 v, double step) { return glm::round(v / step) * step; };
+    for (int i = 0; i < kCases; ++i) {
+        const glm::dvec3 lo = grid(rng.inBox(glm::dvec3(-2.0), glm::dvec3(2.0)), 1.0 / 64.0);
+        const glm::dvec3 hi = lo + grid(rng.inBox(glm::dvec3(0.25), glm::dvec3(3.0)), 1.0 / 64.0);
+        const double diagonal = glm::length(hi - lo);
+        auto corner = [&](int bits) {
+            return glm::dvec3(bits & 1 ? hi.x : lo.x, bits & 2 ? hi.y : lo.y, bits & 4 ? hi.z : lo.z);
+        };
+        auto randomNormal = [&]() {
+            for (;;) {
+                const glm::dvec3 n = grid(rng.unitVector(), 1.0 / 256.0);
+                if (n != glm::dvec3(0.0)) return n;
+            }
+        };
+        // Whether every corner keeps a distance from the plane (random
+        // planes must not pass "almost" through a corner).
+        auto clearOfCorners = [&](glm::dvec3 n, double d) {
+            for (int c = 0; c < 8; ++c)
+                if (std::abs(glm::dot(n, corner(c)) - d) < 1e-4 * diagonal * glm::length(n)) return false;
+            return true;
+        };
+        glm::dvec3 normal;
+        double offset = 0.0;
+        const int kind = i % 6;
+        for (;;) {
+            normal = randomNormal();
+            if (kind == 0) {  // through a random point of the box
+                offset = glm::dot(normal, grid(rng.inBox(lo, hi), 1.0 / 1024.0));
+            } else if (kind == 1) {  // parallel to a face: inside, or containing the face
+                const int axis = rng.index(3), where = rng.index(3);
+                normal = glm::dvec3(0.0);
+                normal[axis] = rng.index(2) ? 1.0 : -1.0;
+                const double at = where == 0 ? lo[axis] : where == 1 ? hi[axis]
+                                                                      : grid(rng.inBox(lo, hi), 1.0 / 64.0)[axis];
+                offset = normal[axis] * at;
+                break;
+            } else if (kind == 2) {  // through a corner: cutting the box there, or only touching it
+                offset = glm::dot(normal, corner(rng.index(8)));
+                break;
+            } else if (kind == 3) {  // containing an edge: through the box, or only touching it
+                const int axis = rng.index(3);
+                normal[axis] = 0.0;
+                if (normal == glm::dvec3(0.0)) continue;
+                offset = glm::dot(normal, corner(rng.index(8)));
+                break;
+            } else if (kind == 4) {  // anywhere near the box, possibly missing it
+                offset = glm::dot(normal, grid(rng.inBox(lo - 0.5 * (hi - lo), hi + 0.5 * (hi - lo)), 1.0 / 1024.0));
+            } else {  // through the centre; once a zero normal
+                if (i == 5) normal = glm::dvec3(0.0);
+                offset = glm::dot(normal, 0.5 * (lo + hi));
+                break;
+            }
+            if (clearOfCorners(normal, offset)) break;
+        }
+        // The normal need not have unit length.
+        const double scale = std::ldexp(1.0, rng.index(21) - 10);
+        normal *= scale;
+        offset *= scale;
+        const json output = callStage([&] {
+            json vertices = json::array();
+            for (const glm::dvec3& v : cppStages().planeBoxPolygon(normal, offset, lo, hi))
+                vertices.push_back({number(v.x), number(v.y), number(v.z)});
+            return vertices;
+        });
+        addCase(check, "planeBoxPolygon",
+                {{"normal", vecJson(normal)}, {"offset", offset}, {"lo", vecJson(lo)}, {"hi", vecJson(hi)}}, output);
+    }
+    return check;
+}
+
+// ---------------------------------------------------------------------------
+// Comparison
+
+double notANumber() { return std::numeric_limits<double>::quiet_NaN(); }
+
+// One case's verdict: `delta` is the difference counted in "worst |Δ|"
+// (NaN where it is not a number: a flag, a missing vertex).
+struct CaseVerdict {
+    bool pass = true;
+    double delta = 0.0;
+    std::string note;
+};
+
+CaseVerdict failure(const std::string& note) { return {false, notANumber(), note}; }
+
+bool isFiniteNumber(const json& j) { return j.is_number() && std::isfinite(j.get<double>()); }
+
+// Numbers, or arrays of them, agree where |a - e| <= absolute + relative |e|.
+CaseVerdict compareNumbers(const json& expected, const json& actual, double absolute, double relative) {
+    if (expected.is_number()) {
+        if (!isFiniteNumber(actual)) return failure(actual.is_null() ? "NaN" : "not a number");
+        const double e = expected.get<double>(), a = actual.get<double>();
+        const double delta = std::abs(a - e);
+        return {delta <= absolute + relative * std::abs(e), delta, ""};
+    }
+    if (!expected.is_array() || !actual.is_array() || actual.size() != expected.size())
+        return failure("wrong number of components");
+    CaseVerdict v;
+    for (std::size_t k = 0; k < expected.size(); ++k) {
+        const CaseVerdict c = compareNumbers(expected[k], actual[k], absolute, relative);
+        if (!c.pass && v.pass) v.note = c.note;
+        v.pass = v.pass && c.pass;
+        v.delta = std::isnan(c.delta) || std::isnan(v.delta) ? notANumber() : std::max(v.delta, c.delta);
+    }
+    return v;
+}
+
+CaseVerdict compareExact(const json& expected, const json& actual) {
+    return expected == actual ? CaseVerdict{} : failure("");
+}
+
+bool readPoints(const json& list, std::vector<glm::dvec3>* points) {
+    if (!list.is_array()) return false;
+    for (const json& p : list) {
+        if (!p.is_array() || p.size() != 3 || !isFiniteNumber(p[0]) || !isFiniteNumber(p[1]) || !isFiniteNumber(p[2]))
+            return false;
+        points->push_back(vecOf(p));
+    }
+    return true;
+}
+
+// The largest distance between matched vertices when actual[(start + step * i) mod n]
+// is matched with expected[i].
+double cycleDistance(const std::vector<glm::dvec3>& expected, const std::vector<glm::dvec3>& actual, int start,
+                     int step) {
+    const int n = int(expected.size());
+    double worst = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const int matched = ((start + step * i) % n + n) % n;
+        worst = std::max(worst, glm::length(actual[std::size_t(matched)] - expected[std::size_t(i)]));
+    }
+    return worst;
+}
+
+// Polygons are cycles: the same vertices (within 1e-6 times the box's
+// diagonal: the reference computes them to about 1e-15 of it, so this
+// only forgives another order of floating-point operations) in the same
+// cyclic order, from any starting vertex. The direction is part of the
+// contract (counter-clockwise seen along the normal, proxy_geometry.h), so
+// a reversed polygon fails, and so does an unsorted one.
+CaseVerdict comparePolygons(const json& input, const json& expected, const json& actual) {
+    const double tolerance = 1e-6 * glm::length(vecOf(input.at("hi")) - vecOf(input.at("lo")));
+    std::vector<glm::dvec3> e, a;
+    readPoints(expected, &e);
+    if (!readPoints(actual, &a)) return failure("not a list of finite vertices");
+    if (a.size() != e.size())
+        return failure(std::to_string(a.size()) + " vertices instead of " + std::to_string(e.size()));
+    const int n = int(e.size());
+    if (n == 0) return {};
+    double best = std::numeric_limits<double>::infinity(), reversed = best;
+    for (int start = 0; start < n; ++start) {
+        best = std::min(best, cycleDistance(e, a, start, 1));
+        reversed = std::min(reversed, cycleDistance(e, a, start, -1));
+    }
+    if (best <= tolerance) return {true, best, ""};
+    if (reversed <= tolerance) return failure("the right vertices in reverse (clockwise) order");
+    double farthest = 0.0;  // from an expected vertex to the nearest vertex given
+    for (const glm::dvec3& p : e) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (const glm::dvec3& q : a) nearest = std::min(nearest, glm::length(p - q));
+        farthest = std::max(farthest, nearest);
+    }
+    if (farthest <= tolerance) return failure("the right vertices in the wrong order");
+    return {false, farthest, "other vertices"};
+}
+
+// Per-check tolerances. Each one forgives a different order of float
+// operations (another correct formula), nothing more; the inputs keep away
+// from the places where a function jumps (see the top of this file).
+CaseVerdict comparePhong(const std::string&, const json&, const json& e, const json& a) {
+    // Colours of order 1; pow(x, 128) turns a relative rounding error of
+    // 1e-7 in x into 1.3e-5: 2e-4 + 1e-4 |e| per channel.
+    return compareNumbers(e, a, 2e-4, 1e-4);
+}
+
+CaseVerdict compareSampling(const std::string& function, const json&, const json& e, const json& a) {
+    // Values span [-0.5, 1.5]. Trilinear: weights and mixes in float, about
+    // 1e-7 each, so 2e-5. Nearest returns a stored voxel value: 1e-6.
+    return compareNumbers(e, a, function == "sample_nearest" ? 1e-6 : 2e-5, 0.0);
+}
+
+CaseVerdict compareGradient(const std::string&, const json&, const json& e, const json& a) {
+    // Gradients of order 1 to 10 per unit length; value differences in
+    // float divided by distances of 0.35 to 2.4: 2e-4 + 1e-4 |e|.
+    return compareNumbers(e, a, 2e-4, 1e-4);
+}
+
+CaseVerdict compareHalfSpace(const std::string& function, const json&, const json& e, const json& a) {
+    if (function == "in_half_space") return compareExact(e, a);
+    if (!a.is_object() || !a.contains("kept")) return failure("no result");
+    if (a["kept"] != e["kept"]) return failure("kept is wrong");
+    if (e["kept"] != true) return {};
+    // Where something is kept, the interval: crossings are at least 1e-3
+    // from the ends and |dot(direction, normal)| >= 0.05, so t is well
+    // conditioned: 1e-4 (1 + |t|).
+    return compareNumbers(json::array({e["t_entry"], e["t_exit"]}), json::array({a["t_entry"], a["t_exit"]}), 1e-4,
+                          1e-4);
+}
+
+CaseVerdict compareTf2d(const std::string&, const json&, const json& e, const json& a) {
+    // Colour and opacity in [0, 1], a few float operations: 1e-4.
+    return compareNumbers(e, a, 1e-4, 0.0);
+}
+
+CaseVerdict compareSliceAxis(const std::string& function, const json&, const json& e, const json& a) {
+    if (function == "chooseSliceAxis") return compareExact(e, a);  // an axis index, ties included
+    // An opacity in [0, 1] from one pow(): 1e-4.
+    return compareNumbers(e, a, 1e-4, 0.0);
+}
+
+CaseVerdict comparePlaneBox(const std::string&, const json& input, const json& e, const json& a) {
+    return comparePolygons(input, e, a);
+}
+
+// ---------------------------------------------------------------------------
+// The list of checks
+
+struct CheckDefinition {
+    FunctionCheckInfo info;
+    json (*run)(const std::string& implementationRoot);
+    CaseVerdict (*compare)(const std::string& function, const json& input, const json& expected, const json& actual);
+};
+
+const std::vector<CheckDefinition>& definitions() {
+    static const std::vector<CheckDefinition> list = {
+        {{"phong_random", "shading",
+          "phong() on random unit normals, lights and views, Phong and Blinn-Phong, lights behind the surface "
+          "and grazing it"},
+         runPhong, comparePhong},
+        {{"trilinear_random_points", "sampling",
+          "sample_trilinear() and sample_nearest() at random points of a random 7x5x6 volume with unequal "
+          "spacings: inside, near and on the faces, on voxel centres, just outside"},
+         runTrilinear, compareSampling},
+        {{"gradient_random_points", "gradient",
+          "gradient_central() and gradient_sobel() at random points of a random 6x7x5 volume with unequal "
+          "spacings, near and on the faces included"},
+         runGradient, compareGradient},
+        {{"half_space_random", "cutting_plane",
+          "in_half_space() and clip_to_half_space() on random planes, points and rays: points on the plane, "
+          "rays parallel to it"},
+         runHalfSpace, compareHalfSpace},
+        {{"tf2d_classify_random", "tf2d",
+          "tf2d_classify() with 1 to 4 random triangle and box widgets, at random (value, gradient) pairs: "
+          "inside widgets, at a triangle's apex, on a box's edge"},
+         runTf2d, compareTf2d},
+        {{"slice_axis_random", "texslice2d",
+          "chooseSliceAxis() on random directions with exact ties, and slice_opacity() on random slices"},
+         runSliceAxis, compareSliceAxis},
+        {{"plane_box_random", "texslice3d",
+          "planeBoxPolygon() on random planes and boxes: through corners and edges, parallel to and containing "
+          "faces, missing the box; vertices compared as a counter-clockwise cycle"},
+         runPlaneBox, comparePlaneBox},
+    };
+    return list;
+}
+
+const CheckDefinition& definition(const std::string& name) {
+    for (const CheckDefinition& d : definitions())
+        if (d.info.name == name) return d;
+    std::string known;
+    for (const CheckDefinition& d : definitions()) known += (known.empty() ? "" : ", ") + d.info.name;
+    throw Error("unknown function check '" + name + "' (known: " + known + ")");
+}
+
+// A short, readable form of inputs and outputs for the examples.
+std::string brief(const json& j) {
+    if (j.is_null()) return "NaN";
+    if (j.is_boolean()) return j.get<bool>() ? "true" : "false";
+    if (j.is_number_integer()) return std::to_string(j.get<long long>());
+    if (j.is_number()) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.6g", j.get<double>());
+        return text;
+    }
+    if (j.is_string()) return j.get<std::string>();
+    std::string out;
+    if (j.is_array()) {
+        for (const json& item : j) out += (out.empty() ? "" : ", ") + brief(item);
+        return "[" + out + "]";
+    }
+    for (const auto& item : j.items()) out += (out.empty() ? "" : ", ") + item.key() + " " + brief(item.value());
+    return "{" + out + "}";
+}
+
+std::string formatDelta(double delta) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", delta);
+    return text;
+}
+
+}  // namespace
+
+const std::vector<FunctionCheckInfo>& functionChecks() {
+    static const std::vector<FunctionCheckInfo> infos = [] {
+        std::vector<FunctionCheckInfo> list;
+        for (const CheckDefinition& d : definitions()) list.push_back(d.info);
+        return list;
+    }();
+    return infos;
+}
+
+json runFunctionCheck(const std::string& name, const std::string& implementationRoot) {
+    const CheckDefinition& check = definition(name);
+    return check.run(checkedRoot(implementationRoot));
+}
+
+CheckComparison compareFunctionCheck(const std::string& name, const json& expected, const json& actual) {
+    const CheckDefinition& check = definition(name);
+    const std::string where = "function check " + name + ": ";
+    for (const json* j : {&expected, &actual}) {
+        if (!j->is_object() || !j->contains("cases") || !(*j)["cases"].is_array())
+            throw Error(where + "expected an object with a list of cases");
+        if (j->value("check", std::string()) != name)
+            throw Error(where + "the results are those of check '" + j->value("check", std::string("?")) + "'");
+    }
+    const json& expectedCases = expected["cases"];
+    const json& actualCases = actual["cases"];
+    const bool sameFixture = expected.value("fixture", json()) == actual.value("fixture", json());
+    if (expectedCases.size() != actualCases.size() || !sameFixture)
+        throw Error(where + "the expected and actual results were made from different inputs");
+
+    CheckComparison result;
+    result.cases = int(expectedCases.size());
+    double worst = 0.0, worstPassing = 0.0;
+    std::map<std::string, std::pair<int, int>> perFunction;  // failed, cases
+    for (std::size_t i = 0; i < expectedCases.size(); ++i) {
+        const json& e = expectedCases[i];
+        const json& a = actualCases[i];
+        const std::string function = e.at("function").get<std::string>();
+        const bool sameCase = a.is_object() && a.value("function", std::string()) == function &&
+                              a.value("input", json()) == e.at("input");
+        if (!sameCase)
+            throw Error(where + "the expected and actual results were made from different inputs (case " +
+                        std::to_string(i) + ")");
+        const json& got = a.value("output", json());
+        CaseVerdict verdict;
+        if (got.is_object() && got.contains("error"))
+            verdict = failure("threw: " + got["error"].get<std::string>());
+        else
+            verdict = check.compare(function, e["input"], e.at("output"), got);
+        std::pair<int, int>& counts = perFunction[function];
+        ++counts.second;
+        if (verdict.pass) {
+            worstPassing = std::max(worstPassing, verdict.delta);
+            continue;
+        }
+        ++counts.first;
+        ++result.failed;
+        if (!std::isnan(verdict.delta)) worst = std::max(worst, verdict.delta);
+        if (result.examples.size() < 3)
+            result.examples.push_back(function + ", case " + std::to_string(i) + ": input " + brief(e["input"]) +
+                                      "; expected " + brief(e["output"]) + "; got " + brief(got) +
+                                      (verdict.note.empty() ? "" : " (" + verdict.note + ")"));
+    }
+    if (result.failed == 0) {
+        result.summary = "all " + std::to_string(result.cases) + " cases agree";
+        if (worstPassing > 0.0) result.summary += " (worst |\u0394| " + formatDelta(worstPassing) + ")";
+        return result;
+    }
+    result.summary = std::to_string(result.failed) + " of " + std::to_string(result.cases) + " cases differ";
+    if (perFunction.size() > 1) {
+        std::string parts;
+        for (const auto& [function, counts] : perFunction)
+            if (counts.first > 0)
+                parts += (parts.empty() ? "" : ", ") + function + " " + std::to_string(counts.first) + " of " +
+                         std::to_string(counts.second);
+        result.summary += " (" + parts + ")";
+    }
+    if (worst > 0.0) result.summary += "; worst |\u0394| " + formatDelta(worst);
+    return result;
+}
+
+}  // namespace voxlab

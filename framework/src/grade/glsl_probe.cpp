@@ -1,0 +1,207 @@
+// voxlab (internal): the GLSL probe harness (see glsl_probe.h).
+#include "glsl_probe.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+#include "voxlab/error.h"
+#include "voxlab/scene.h"
+#include "voxlab_gl.h"
+
+namespace voxlab::probe {
+namespace {
+
+// Cases are laid out in rows of this many pixels.
+constexpr int kRowLength = 64;
+constexpr int kVolumeUnit = 0;
+constexpr int kFirstInputUnit = 1;
+constexpr int kTargets = 3;  // probe_result0, probe_result1, probe_status
+
+// Restores what the probe changes, so that a render engine sharing the
+// context finds its state as it left it.
+class GlStateGuard {
+public:
+    GlStateGuard() {
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer_);
+        glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer_);
+        glGetIntegerv(GL_VIEWPORT, viewport_);
+        glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
+        glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vertexArray_);
+        glGetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture_);
+    }
+    ~GlStateGuard() {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(drawFramebuffer_));
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(readFramebuffer_));
+        glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+        glUseProgram(GLuint(program_));
+        glBindVertexArray(GLuint(vertexArray_));
+        glActiveTexture(GLenum(activeTexture_));
+    }
+    GlStateGuard(const GlStateGuard&) = delete;
+    GlStateGuard& operator=(const GlStateGuard&) = delete;
+
+private:
+    GLint drawFramebuffer_ = 0, readFramebuffer_ = 0, viewport_[4] = {0, 0, 0, 0};
+    GLint program_ = 0, vertexArray_ = 0, activeTexture_ = GL_TEXTURE0;
+};
+
+// GL names deleted on every path out of run().
+struct GlObjects {
+    std::vector<GLuint> textures, framebuffers, vertexArrays;
+    ~GlObjects() {
+        if (!textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
+        if (!framebuffers.empty()) glDeleteFramebuffers(GLsizei(framebuffers.size()), framebuffers.data());
+        if (!vertexArrays.empty()) glDeleteVertexArrays(GLsizei(vertexArrays.size()), vertexArrays.data());
+    }
+};
+
+GLuint floatTexture(GlObjects& objects, int width, int height, const float* texels) {
+    GLuint texture = 0;
+    glGenTextures(1, &texture);
+    objects.textures.push_back(texture);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, texels);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return texture;
+}
+
+// The library for a probe. The GL functions are loaded when a context is
+// created; calling them before would crash. The probe itself must be the
+// framework's: the implementation root comes first on the search path, and
+// a submission must not bring its own probes/.
+ShaderLibrary probeLibrary(const std::string& implementationRoot, const std::string& fragmentName) {
+    if (!glCreateProgram) throw Error("function checks: no OpenGL context (create one first)");
+    ShaderLibrary library = ShaderLibrary::forImplementation(implementationRoot);
+    const std::string expected = std::filesystem::path(projectRoot() + "/shaders/" + fragmentName).lexically_normal();
+    const std::string found = std::filesystem::path(library.resolve(fragmentName)).lexically_normal();
+    if (found != expected) throw Error(found + ": replaces the grader's probe shader " + fragmentName);
+    return library;
+}
+
+}  // namespace
+
+GlslProbe::GlslProbe(const std::string& implementationRoot, const std::string& fragmentName,
+                     const ShaderConstants& constants)
+    : program_(probeLibrary(implementationRoot, fragmentName), "voxlab/fullscreen.vert", fragmentName, constants) {}
+
+GlslProbe::~GlslProbe() {
+    if (volumeTexture_) glDeleteTextures(1, &volumeTexture_);
+}
+
+void GlslProbe::setVolume(const ProbeVolume& volume) {
+    const glm::ivec3 d = volume.dims;
+    if (std::size_t(d.x) * d.y * d.z != volume.values.size())
+        throw Error("probe volume: " + std::to_string(volume.values.size()) + " values for " +
+                    std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z) + " voxels");
+    GLint activeTexture = GL_TEXTURE0;
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture);
+    if (!volumeTexture_) glGenTextures(1, &volumeTexture_);
+    glActiveTexture(GL_TEXTURE0 + kVolumeUnit);
+    glBindTexture(GL_TEXTURE_3D, volumeTexture_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, d.x, d.y, d.z, 0, GL_RED, GL_FLOAT, volume.values.data());
+    const GLint filter = volume.linearFilter ? GL_LINEAR : GL_NEAREST;
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, filter);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+    glActiveTexture(GLenum(activeTexture));
+
+    GLint program = 0;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+    program_.use();
+    const glm::vec3 spacing = volume.extent / glm::vec3(d);
+    const auto [lo, hi] = std::minmax_element(volume.values.begin(), volume.values.end());
+    program_.set("u_volume", kVolumeUnit);
+    program_.set("u_volume_dims", d);
+    program_.set("u_volume_extent", volume.extent);
+    program_.set("u_value_scale", volume.valueScale);
+    program_.set("u_value_offset", volume.valueOffset);
+    program_.set("u_min_spacing", std::min({spacing.x, spacing.y, spacing.z}));
+    program_.set("u_value_range", glm::vec2(*lo, *hi) * volume.valueScale + volume.valueOffset);
+    glUseProgram(GLuint(program));
+    checkGlError("uploading a probe volume");
+}
+
+ProbeResults GlslProbe::run(int cases, const std::vector<std::vector<glm::vec4>>& inputs,
+                            const std::function<void(const ShaderProgram&, int)>& perCase) {
+    if (cases <= 0) return {};
+    if (int(inputs.size()) > kProbeInputs) throw Error("probe: more than " + std::to_string(kProbeInputs) + " inputs");
+    const int width = std::min(cases, kRowLength), height = (cases + kRowLength - 1) / kRowLength;
+    const std::size_t pixels = std::size_t(width) * height;
+
+    GlStateGuard state;
+    GlObjects objects;
+    program_.use();
+    if (volumeTexture_) {
+        glActiveTexture(GL_TEXTURE0 + kVolumeUnit);
+        glBindTexture(GL_TEXTURE_3D, volumeTexture_);
+    }
+    // The targets first: creating a texture binds it to the active unit,
+    // which must not be one the probe reads.
+    GLuint targets[kTargets] = {0, 0, 0};
+    GLenum attachments[kTargets];
+    glActiveTexture(GL_TEXTURE0 + kFirstInputUnit);
+    for (int t = 0; t < kTargets; ++t) {
+        targets[t] = floatTexture(objects, width, height, nullptr);
+        attachments[t] = GL_COLOR_ATTACHMENT0 + GLenum(t);
+    }
+    for (std::size_t k = 0; k < inputs.size(); ++k) {
+        if (int(inputs[k].size()) != cases) throw Error("probe: input " + std::to_string(k) + " has the wrong size");
+        std::vector<glm::vec4> texels(inputs[k]);
+        texels.resize(pixels, glm::vec4(0.0f));
+        glActiveTexture(GL_TEXTURE0 + kFirstInputUnit + GLenum(k));
+        floatTexture(objects, width, height, &texels[0].x);
+        program_.set(("u_probe_input[" + std::to_string(k) + "]").c_str(), kFirstInputUnit + int(k));
+    }
+
+    GLuint framebuffer = 0, vertexArray = 0;
+    glGenFramebuffers(1, &framebuffer);
+    objects.framebuffers.push_back(framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    for (int t = 0; t < kTargets; ++t)
+        glFramebufferTexture2D(GL_FRAMEBUFFER, attachments[t], GL_TEXTURE_2D, targets[t], 0);
+    glDrawBuffers(kTargets, attachments);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw Error("OpenGL: the probe framebuffer is not complete");
+    glGenVertexArrays(1, &vertexArray);
+    objects.vertexArrays.push_back(vertexArray);
+    glBindVertexArray(vertexArray);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_SCISSOR_TEST);
+
+    if (perCase) {
+        // One case per draw, each into its own pixel (gl_FragCoord still
+        // names that pixel, so the probe reads that case's inputs).
+        for (int i = 0; i < cases; ++i) {
+            perCase(program_, i);
+            glViewport(i % width, i / width, 1, 1);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        }
+    } else {
+        glViewport(0, 0, width, height);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    checkGlError("drawing a function probe");
+
+    std::vector<glm::vec4> read[kTargets];
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    for (int t = 0; t < kTargets; ++t) {
+        read[t].resize(pixels);
+        glReadBuffer(attachments[t]);
+        glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, &read[t][0].x);
+    }
+    checkGlError("reading back a function probe");
+
+    ProbeResults results;
+    results.first.assign(read[0].begin(), read[0].begin() + cases);
+    results.second.assign(read[1].begin(), read[1].begin() + cases);
+    for (int i = 0; i < cases; ++i) results.notImplemented = results.notImplemented || read[2][i].x != 0.0f;
+    return results;
+}
+
+}  // namespace voxlab::probe

@@ -1,0 +1,68 @@
+// voxlab (internal): running GLSL stage functions on many inputs at once,
+// for the function checks (voxlab/function_checks.h).
+//
+// A probe is a fragment shader under shaders/probes/ that includes a stage
+// and calls its function once per pixel. Each case is one pixel: its inputs
+// are texels of up to kProbeInputs RGBA32F textures (u_probe_input[k],
+// read with PROBE_INPUT(k) from probes/probe.glsl), and the probe writes
+// two RGBA32F results, read back as floats, unrounded. A third target
+// records whether the pixel reached a stub's not_implemented().
+//
+// Functions that read uniforms the stage declares (u_ka, u_tf2d_shape[i],
+// ...) can be given different values per case: `perCase` is then called
+// before each case is drawn alone, into its own pixel.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "voxlab/shader.h"
+
+namespace voxlab::probe {
+
+constexpr int kProbeInputs = 6;
+
+struct ProbeResults {
+    std::vector<glm::vec4> first, second;  // per case
+    bool notImplemented = false;           // some case called not_implemented()
+};
+
+// A float volume for the probes that sample (the uniforms of
+// shaders/voxlab/volume.glsl): `values` x fastest, world box [0, extent].
+struct ProbeVolume {
+    glm::ivec3 dims{0};
+    glm::vec3 extent{0.0f};
+    std::vector<float> values;
+    float valueScale = 1.0f, valueOffset = 0.0f;
+    bool linearFilter = false;  // GL_LINEAR (the "hardware" interpolation) instead of GL_NEAREST
+};
+
+class GlslProbe {
+public:
+    // Compiles shaders/probes/<fragmentName> (found on the implementation's
+    // search path) with voxlab/fullscreen.vert. Throws ShaderError.
+    GlslProbe(const std::string& implementationRoot, const std::string& fragmentName,
+              const ShaderConstants& constants = {});
+    ~GlslProbe();
+    GlslProbe(const GlslProbe&) = delete;
+    GlslProbe& operator=(const GlslProbe&) = delete;
+
+    const ShaderProgram& program() const { return program_; }
+
+    // Uploads the volume (texture unit 0, u_volume) and sets its uniforms,
+    // u_min_spacing and u_value_range included.
+    void setVolume(const ProbeVolume& volume);
+
+    // Runs `cases` cases; inputs[k][i] is input k of case i.
+    ProbeResults run(int cases, const std::vector<std::vector<glm::vec4>>& inputs,
+                     const std::function<void(const ShaderProgram&, int)>& perCase = nullptr);
+
+private:
+    ShaderProgram program_;
+    unsigned volumeTexture_ = 0;
+};
+
+}  // namespace voxlab::probe

@@ -1,0 +1,224 @@
+// voxlab grader: grading submissions, stage by stage, in parallel
+// processes (see grader.h).
+#include "voxlab/grader.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+#include "stage_job.h"
+#include "voxlab/child_process.h"
+#include "voxlab/error.h"
+#include "voxlab/html_report.h"
+#include "voxlab/stage_library.h"
+
+namespace voxlab {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using grading::RunOutcome;
+using grading::StageRun;
+
+std::vector<std::string> gradedStages(const std::string& root) {
+    std::vector<std::string> stages;
+    for (const std::string& s : stageOrder())
+        if (fs::exists(fs::path(root) / s / "grading.json")) stages.push_back(s);
+    return stages;
+}
+
+namespace {
+
+std::string absolute(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
+
+std::string isoTime() {
+    const std::time_t now = std::time(nullptr);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    return buf;
+}
+
+// A progress bar on stderr ("[#####.....] 12/30  alice: mip"), redrawn in
+// place on a terminal and printed every tenth of the way otherwise.
+class Progress {
+public:
+    Progress(int total, bool show) : total_(total), show_(show && total > 0), tty_(isatty(2)) {}
+    void done(const std::string& what) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        ++count_;
+        if (!show_) return;
+        const int width = 30, filled = total_ ? width * count_ / total_ : width;
+        if (tty_) {
+            std::fprintf(stderr, "\r[%s%s] %d/%d  %-40.40s", std::string(filled, '#').c_str(),
+                         std::string(width - filled, '.').c_str(), count_, total_, what.c_str());
+            if (count_ == total_) std::fprintf(stderr, "\n");
+        } else if (count_ == total_ || (count_ * 10 / total_) != ((count_ - 1) * 10 / total_)) {
+            std::fprintf(stderr, "%d/%d done (%s)\n", count_, total_, what.c_str());
+        }
+    }
+
+private:
+    int total_, count_ = 0;
+    bool show_, tty_;
+    std::mutex mutex_;
+};
+
+// Runs jobs 0..n-1 on `workers` threads.
+void parallelFor(int n, int workers, const std::function<void(int)>& job) {
+    std::atomic<int> next{0};
+    std::vector<std::thread> threads;
+    for (int w = 0; w < std::max(1, std::min(workers, n)); ++w)
+        threads.emplace_back([&] {
+            for (int i; (i = next++) < n;) job(i);
+        });
+    for (std::thread& t : threads) t.join();
+}
+
+std::vector<std::string> chosenStages(const GraderOptions& options) {
+    if (!options.stages.empty()) {
+        for (const std::string& s : options.stages)
+            if (!fs::exists(fs::path(options.referenceRoot) / s / "grading.json"))
+                throw Error("unknown stage '" + s + "' (no " + options.referenceRoot + "/" + s + "/grading.json)");
+        std::vector<std::string> stages;  // in teaching order, once each
+        for (const std::string& s : stageOrder())
+            if (std::find(options.stages.begin(), options.stages.end(), s) != options.stages.end()) stages.push_back(s);
+        return stages;
+    }
+    return gradedStages(options.referenceRoot);
+}
+
+}  // namespace
+
+void renderExpectedOutputs(const GraderOptions& given) {
+    GraderOptions options = given;
+    options.referenceRoot = absolute(options.referenceRoot);
+    options.expectedDir = absolute(options.expectedDir);
+    options.isolateStage = false;
+    const std::vector<std::string> stages = chosenStages(options);
+    fs::create_directories(options.expectedDir);
+    // The reference's C++ stages as a library, loaded by every graded stage.
+    std::vector<std::string> sources;
+    for (const std::string& s : stageOrder()) {
+        std::error_code ec;
+        for (const auto& entry : fs::directory_iterator(fs::path(options.referenceRoot) / s, ec))
+            if (entry.path().extension() == ".cpp") sources.push_back(entry.path().string());
+    }
+    if (!sources.empty()) {
+        ChildLimits limits;
+        limits.seconds = 300.0;
+        const std::string library = (fs::path(options.expectedDir) / "reference_stages.so").string();
+        const ChildResult built = runChild(stageLibraryBuildCommand(sources, library), limits);
+        if (!built.succeeded()) throw Error("the reference's C++ stages do not compile:\n" + built.output);
+    }
+    Progress progress(int(stages.size()), options.progress);
+    std::vector<std::string> failures(stages.size());
+    parallelFor(int(stages.size()), options.jobs, [&](int i) {
+        const std::string& stage = stages[i];
+        StageRun run{stage, options.referenceRoot, (fs::path(options.expectedDir) / stage).string(),
+                     (fs::path(options.expectedDir) / ".work" / stage).string(), ""};
+        fs::remove_all(run.outputDir);
+        const RunOutcome outcome = grading::runStage(run, loadStageManifest(options.referenceRoot, stage), options);
+        if (!outcome.compiled) failures[i] = stage + ": " + outcome.compileLog;
+        else if (!outcome.finished) failures[i] = stage + ": the reference " + outcome.ended + "\n" + outcome.output;
+        for (const auto& entry : fs::directory_iterator(run.outputDir))
+            if (entry.path().string().find(".error.json") != std::string::npos)
+                failures[i] = stage + ": the reference failed: " + entry.path().filename().string();
+        progress.done("reference rendered: " + stage);
+    });
+    fs::remove_all(fs::path(options.expectedDir) / ".work");
+    for (const std::string& f : failures)
+        if (!f.empty()) throw Error("rendering the expected outputs: " + f);
+}
+
+std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, const GraderOptions& given) {
+    GraderOptions options = given;
+    options.referenceRoot = absolute(options.referenceRoot);
+    options.expectedDir = absolute(options.expectedDir);
+    const std::vector<std::string> stages = chosenStages(options);
+    if (!options.shipped) renderExpectedOutputs(options);
+
+    struct Job {
+        std::size_t submission;
+        std::string stage;
+    };
+    std::vector<Job> jobs;
+    for (std::size_t s = 0; s < submissions.size(); ++s)
+        for (const std::string& stage : stages)
+            if (submissions[s].stages.empty() || std::count(submissions[s].stages.begin(),
+                                                            submissions[s].stages.end(), stage))
+                jobs.push_back({s, stage});
+    std::vector<std::vector<json>> results(submissions.size(), std::vector<json>(stages.size()));
+    std::vector<double> seconds(submissions.size(), 0.0);
+    std::mutex mutex;
+    Progress progress(int(jobs.size()), options.progress);
+    parallelFor(int(jobs.size()), options.jobs, [&](int i) {
+        const Job& job = jobs[i];
+        const Submission& sub = submissions[job.submission];
+        const auto start = std::chrono::steady_clock::now();
+        const std::size_t stageIndex =
+            std::find(stages.begin(), stages.end(), job.stage) - stages.begin();
+        json entry;
+        try {
+            const StageManifest manifest = loadStageManifest(options.referenceRoot, job.stage);
+            const fs::path report = absolute(sub.reportDir);
+            StageRun run{job.stage, absolute(sub.folder), (report / job.stage).string(),
+                         (report / ".work" / job.stage).string(), ".submission"};
+            fs::remove_all(run.outputDir);
+            if (!fs::is_directory(fs::path(sub.folder) / job.stage)) {
+                entry = {{"stage", job.stage}, {"title", manifest.title}, {"score", 0.0},
+                         {"max_score", manifest.points}, {"status", "error"},
+                         {"message", "the submission has no folder " + job.stage + "/"}};
+            } else {
+                const RunOutcome outcome = grading::runStage(run, manifest, options);
+                entry = grading::scoreStage(run, outcome, manifest, options, sub.folder);
+            }
+            fs::remove_all(run.workDir);
+        } catch (const std::exception& e) {
+            entry = {{"stage", job.stage}, {"score", 0.0}, {"max_score", 0.0}, {"status", "error"},
+                     {"message", std::string("grader error: ") + e.what()}};
+        }
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        entry["elapsed_s"] = elapsed;
+        {
+            std::lock_guard<std::mutex> lock(mutex);
+            results[job.submission][stageIndex] = entry;
+            seconds[job.submission] += elapsed;
+        }
+        progress.done(sub.name + ": " + job.stage);
+    });
+
+    std::vector<json> reports;
+    for (std::size_t s = 0; s < submissions.size(); ++s) {
+        const Submission& sub = submissions[s];
+        json report = {{"submission", absolute(sub.folder)}, {"name", sub.name}, {"graded_at", isoTime()},
+                       {"mode", options.shipped || !options.isolateStage ? "check" : "grade"},
+                       {"sandbox", sandboxAvailable() ? "writes confined to the report folder (Landlock)"
+                                                      : "no write confinement on this kernel"},
+                       {"elapsed_s", seconds[s]}};
+        double score = 0.0, maxScore = 0.0;
+        json graded = json::array();
+        for (const json& stage : results[s]) {
+            if (stage.is_null()) continue;  // not asked for
+            score += stage.value("score", 0.0);
+            maxScore += stage.value("max_score", 0.0);
+            graded.push_back(stage);
+        }
+        report["score"] = score;
+        report["max_score"] = maxScore;
+        report["stages"] = graded;
+        fs::remove_all(fs::path(sub.reportDir) / ".work");
+        std::ofstream(fs::path(sub.reportDir) / "report.json") << report.dump(2) << "\n";
+        std::ofstream(fs::path(sub.reportDir) / "results.json") << gradescopeResults(report).dump(2) << "\n";
+        writeHtmlReport(report, sub.reportDir);
+        reports.push_back(report);
+    }
+    return reports;
+}
+
+}  // namespace voxlab

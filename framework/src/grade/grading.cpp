@@ -1,0 +1,171 @@
+// voxlab: stage manifests, grading metrics and credit (see grading.h).
+#include "voxlab/grading.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+#include "../scene/json_text.h"
+#include "voxlab/error.h"
+#include "voxlab/flip.h"
+#include "voxlab/image_metrics.h"
+
+namespace voxlab {
+
+const std::vector<std::string>& stageOrder() {
+    static const std::vector<std::string> order = {
+        "slicer",    "sampling", "mip",   "minip",  "average",       "firsthit",   "slab_mip",  "composite",
+        "iso",       "gradient", "shading", "tf2d", "cutting_plane", "texslice2d", "texslice3d"};
+    return order;
+}
+
+namespace {
+
+using nlohmann::json;
+
+double number(const json& j, const std::string& key, double fallback, const std::string& where) {
+    if (!j.contains(key)) return fallback;
+    if (!j.at(key).is_number()) throw Error(where + ": " + key + ": expected a number");
+    return j.at(key).get<double>();
+}
+
+std::string text(const json& j, const std::string& key, const std::string& where, bool required) {
+    if (!j.contains(key)) {
+        if (required) throw Error(where + ": " + key + ": missing");
+        return "";
+    }
+    if (!j.at(key).is_string()) throw Error(where + ": " + key + ": expected a string");
+    return j.at(key).get<std::string>();
+}
+
+Tolerance readTolerance(const json& j, const std::string& where) {
+    Tolerance t;
+    if (!j.is_object()) throw Error(where + ": expected an object");
+    for (const auto& [key, value] : j.items())
+        if (key != "max_difference" && key != "max_fraction" && key != "min_ssim" && key != "max_flip" && key != "why")
+            throw Error(where + ": unknown key '" + key + "'");
+    t.maxDifference = number(j, "max_difference", t.maxDifference, where);
+    t.maxFraction = number(j, "max_fraction", t.maxFraction, where);
+    t.minSsim = number(j, "min_ssim", t.minSsim, where);
+    t.maxFlip = number(j, "max_flip", t.maxFlip, where);
+    if (!(t.maxDifference >= 0 && t.maxFraction >= 0 && t.maxFraction < 1 && t.minSsim < 1 && t.maxFlip > 0))
+        throw Error(where + ": tolerances out of range");
+    return t;
+}
+
+}  // namespace
+
+StageManifest loadStageManifest(const std::string& root, const std::string& stage) {
+    const std::filesystem::path folder = std::filesystem::path(root) / stage;
+    const std::string path = (folder / "grading.json").string();
+    if (!std::filesystem::exists(path)) throw Error(path + ": no such file (stage '" + stage + "' has no manifest)");
+    const json j = json_text::readJsonFile(path);
+    if (!j.is_object()) throw Error(path + ": expected an object");
+    StageManifest m;
+    m.stage = stage;
+    m.title = text(j, "title", path, true);
+    m.about = text(j, "about", path, false);
+    m.points = number(j, "points", 10.0, path);
+    if (!(m.points >= 0)) throw Error(path + ": points: must be >= 0");
+    if (j.contains("scenes")) {
+        if (!j.at("scenes").is_array()) throw Error(path + ": scenes: expected an array");
+        for (std::size_t i = 0; i < j.at("scenes").size(); ++i) {
+            const json& s = j.at("scenes")[i];
+            const std::string where = path + ": scenes[" + std::to_string(i) + "]";
+            if (!s.is_object()) throw Error(where + ": expected an object");
+            GradedScene g;
+            g.name = text(s, "name", where, true);
+            g.scenePath = (folder / text(s, "scene", where, true)).lexically_normal().string();
+            g.weight = number(s, "weight", 1.0, where);
+            if (s.contains("tolerance")) g.tolerance = readTolerance(s.at("tolerance"), where + ".tolerance");
+            if (g.name.empty() || g.name.find_first_of("/\\. ") != std::string::npos)
+                throw Error(where + ": name: use letters, digits and underscores");
+            m.scenes.push_back(g);
+        }
+    }
+    if (j.contains("checks")) {
+        if (!j.at("checks").is_array()) throw Error(path + ": checks: expected an array");
+        for (std::size_t i = 0; i < j.at("checks").size(); ++i) {
+            const json& c = j.at("checks")[i];
+            const std::string where = path + ": checks[" + std::to_string(i) + "]";
+            if (!c.is_object()) throw Error(where + ": expected an object");
+            m.checks.push_back({text(c, "name", where, true), number(c, "weight", 1.0, where)});
+        }
+    }
+    return m;
+}
+
+ImageMetrics compareForGrading(const Image& expected, const Image& submission, const Tolerance& tolerance,
+                               Image* flipMap, Image* differenceMap) {
+    if (expected.width != submission.width || expected.height != submission.height)
+        throw Error("image size " + std::to_string(submission.width) + "x" + std::to_string(submission.height) +
+                    " differs from the expected " + std::to_string(expected.width) + "x" +
+                    std::to_string(expected.height));
+    ImageMetrics m;
+    // Half a grey level of slack: PNG values are multiples of 1/255.
+    const PixelDifference d = pixelDifference(expected, submission, (tolerance.maxDifference + 0.5) / 255.0);
+    m.fractionOver = d.fractionAbove;
+    m.maxDifference = d.max * 255.0;
+    const SsimResult s = ssim(expected, submission);
+    m.ssim = s.mean;
+    m.ssimMin = s.min;
+    const FlipResult f = flip(expected, submission);
+    m.flipMean = f.mean;
+    m.flipMax = f.max;
+    m.psnr = psnr(expected, submission);
+    if (flipMap) *flipMap = heatmap(f);
+    if (differenceMap) {
+        // |difference| amplified four times in grey; pixels over the bound in red.
+        Image out(expected.width, expected.height);
+        for (int y = 0; y < out.height; ++y)
+            for (int x = 0; x < out.width; ++x) {
+                const glm::vec4 a = glm::clamp(expected.at(x, y), 0.0f, 1.0f);
+                const glm::vec4 b = glm::clamp(submission.at(x, y), 0.0f, 1.0f);
+                const glm::vec3 delta = glm::abs(glm::vec3(a) - glm::vec3(b));
+                const float worst = std::max({delta.r, delta.g, delta.b});
+                const float grey = std::min(1.0f, 4.0f * worst);
+                const bool over = worst * 255.0f > float(tolerance.maxDifference) + 0.5f;
+                out.set(x, y, over ? glm::vec4(1.0f, 0.15f + 0.3f * (1 - grey), 0.1f, 1.0f)
+                                   : glm::vec4(grey, grey, grey, 1.0f));
+            }
+        *differenceMap = out;
+    }
+    return m;
+}
+
+double toleranceRatio(const ImageMetrics& m, const Tolerance& t) {
+    const double inf = std::numeric_limits<double>::infinity();
+    const double pixels = t.maxFraction > 0 ? m.fractionOver / t.maxFraction : (m.fractionOver > 0 ? inf : 0.0);
+    const double structure = (1.0 - m.ssim) / (1.0 - t.minSsim);
+    const double flipRatio = m.flipMean / t.maxFlip;
+    return std::max({pixels, structure, flipRatio, 0.0});
+}
+
+double creditForRatio(double ratio) {
+    if (!(ratio <= 3.0)) return 0.0;  // NaN too
+    if (ratio <= 1.0) return 1.0;
+    return (3.0 - ratio) / 2.0;
+}
+
+double creditForFailedCases(double failedFraction) {
+    if (!(failedFraction >= 0.0)) return 0.0;
+    return std::max(0.0, 1.0 - failedFraction / 0.1);
+}
+
+nlohmann::json toJson(const ImageMetrics& m) {
+    json j = {{"fraction_over", m.fractionOver}, {"max_difference", m.maxDifference}, {"ssim", m.ssim},
+              {"ssim_min", m.ssimMin}, {"flip_mean", m.flipMean}, {"flip_max", m.flipMax}};
+    if (std::isfinite(m.psnr)) j["psnr"] = m.psnr;
+    else j["psnr"] = nullptr;  // identical
+    return j;
+}
+
+nlohmann::json toJson(const Tolerance& t) {
+    return {{"max_difference", t.maxDifference}, {"max_fraction", t.maxFraction}, {"min_ssim", t.minSsim},
+            {"max_flip", t.maxFlip}};
+}
+
+}  // namespace voxlab

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Builds the student release of voxlab: everything a student needs and
+# nothing of the reference solution.
+#
+#   tools/make_student_release.sh OUT_DIR
+#
+# OUT_DIR receives the framework, shaders, the starter code (assignments/,
+# with every stage's handout, grading scenes and manifest), the datasets,
+# the docs, tools/setup.sh, and expected/: the golden outputs of every
+# grading scene and function check, rendered here from reference/, which
+# `voxlab check` compares a student's work with. reference/, tests/ and
+# bench/ are left out (they hold or use the solution). The script then
+# checks that no solution text went along: no BEGIN SOLUTION marker, and no
+# line of a solution block appears in any shipped source file.
+set -euo pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+out="${1:?usage: tools/make_student_release.sh OUT_DIR}"
+build="${VOXLAB_BUILD_DIR:-$root/build}"
+if [ -e "$out" ] && [ -n "$(ls -A "$out" 2>/dev/null)" ]; then
+  echo "make_student_release: $out exists and is not empty" >&2
+  exit 2
+fi
+
+# The starter code must match the reference it is generated from.
+python3 "$root/tools/make_assignments.py" --check
+
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target voxlab >/dev/null
+
+mkdir -p "$out"
+for item in CMakeLists.txt framework shaders assignments datasets docs; do
+  cp -r "$root/$item" "$out/"
+done
+mkdir -p "$out/tools"
+cp "$root/tools/setup.sh" "$out/tools/"
+cp "$root/README.md" "$out/README.md"
+
+# The expected outputs, rendered by the reference on this machine.
+LP_NUM_THREADS="${LP_NUM_THREADS:-2}" "$build/bin/voxlab" grade --render-expected "$out/expected" --quiet >/dev/null
+rm -f "$out/expected/reference_stages.so"
+
+# No solution may leak: no markers, and no non-trivial solution line.
+if grep -rl "BEGIN SOLUTION" "$out" >/dev/null; then
+  echo "make_student_release: a solution marker was shipped:" >&2
+  grep -rl "BEGIN SOLUTION" "$out" >&2
+  exit 1
+fi
+python3 - "$root/reference" "$out" <<'PY'
+import os, re, sys
+reference, out = sys.argv[1], sys.argv[2]
+lines = set()
+for d, _, files in os.walk(reference):
+    for f in files:
+        inside = False
+        for line in open(os.path.join(d, f), errors="replace"):
+            if re.match(r"\s*// BEGIN SOLUTION", line): inside = True; continue
+            if re.match(r"\s*// END SOLUTION", line): inside = False; continue
+            # Lines long enough to be specific to the solution.
+            if inside and len(line.strip()) >= 24: lines.add(line.strip())
+leaks = []
+for d, _, files in os.walk(out):
+    for f in files:
+        if not f.endswith((".glsl", ".cpp", ".h", ".frag", ".vert", ".md")): continue
+        for n, line in enumerate(open(os.path.join(d, f), errors="replace"), 1):
+            if line.strip() in lines: leaks.append(f"{os.path.join(d, f)}:{n}: {line.strip()}")
+if leaks:
+    print("make_student_release: solution lines were shipped:", *leaks[:20], sep="\n", file=sys.stderr)
+    sys.exit(1)
+PY
+echo "student release: $out ($(du -sh "$out" | cut -f1)); build it with tools/setup.sh, check work with voxlab check"

@@ -8,8 +8,9 @@
 # with every stage's handout, grading scenes and manifest), the datasets,
 # the docs, tools/setup.sh, and expected/: the golden outputs of every
 # grading scene and function check, rendered here from reference/, which
-# `voxlab check` compares a student's work with. reference/, tests/ and
-# bench/ are left out (they hold or use the solution). The script then
+# `voxlab check` compares a student's work with. reference/, the tests and
+# bench/ are left out (they hold or use the solution); of tests/ only the
+# golden scenes go along, since the handouts render them. The script then
 # checks that no solution text went along: no BEGIN SOLUTION marker, and no
 # line of a solution block appears in any shipped source file.
 set -euo pipefail
@@ -35,6 +36,8 @@ done
 mkdir -p "$out/tools"
 cp "$root/tools/setup.sh" "$out/tools/"
 cp "$root/README.md" "$out/README.md"
+mkdir -p "$out/tests/golden"   # the scenes the handouts render (JSON only)
+cp -r "$root/tests/golden/scenes" "$out/tests/golden/"
 
 # The expected outputs, rendered by the reference on this machine.
 LP_NUM_THREADS="${LP_NUM_THREADS:-2}" "$build/bin/voxlab" grade --render-expected "$out/expected" --quiet >/dev/null

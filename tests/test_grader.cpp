@@ -1,0 +1,281 @@
+// The grader end to end (voxlab/grader.h): the reference scores full marks,
+// the starter code scores zero with "not implemented", and a submission that
+// hangs, crashes or does not compile is graded in bounded time with clear
+// messages, without touching anything outside its report folder.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "voxlab/error.h"
+#include "voxlab/grader.h"
+#include "voxlab/grading.h"
+#include "voxlab/scene.h"
+
+namespace voxlab::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path kSource = VOXLAB_SOURCE_DIR;
+
+fs::path scratchPath(const std::string& name) {
+    return fs::path(::testing::TempDir()) / ("voxlab_grader_" + std::to_string(getpid())) / name;
+}
+
+fs::path scratch(const std::string& name) {
+    const fs::path dir = scratchPath(name);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+std::string readFile(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Copies reference/ and replaces `find` (which must occur once) in one file.
+fs::path mutatedCopy(const fs::path& into, const std::string& file, const std::string& find,
+                     const std::string& replace) {
+    fs::copy(kSource / "reference", into, fs::copy_options::recursive);
+    const fs::path path = into / file;
+    std::string text = readFile(path);
+    const std::size_t at = text.find(find);
+    EXPECT_NE(at, std::string::npos) << file << ": '" << find << "' not found";
+    EXPECT_EQ(text.find(find, at + 1), std::string::npos) << file << ": '" << find << "' occurs twice";
+    if (at != std::string::npos) text.replace(at, find.size(), replace);
+    std::ofstream(path) << text;
+    return into;
+}
+
+// A fingerprint of a folder: every file's path, size and content.
+std::string fingerprint(const fs::path& root) {
+    std::vector<std::string> entries;
+    for (const auto& e : fs::recursive_directory_iterator(root))
+        if (e.is_regular_file()) entries.push_back(fs::relative(e.path(), root).string() + "\n" + readFile(e.path()));
+    std::sort(entries.begin(), entries.end());
+    std::string all;
+    for (const std::string& s : entries) all += s;
+    return std::to_string(all.size()) + ":" + std::to_string(std::hash<std::string>{}(all));
+}
+
+// The reference's expected outputs are rendered once for the whole file.
+class Grader : public ::testing::Test {
+public:
+    static void SetUpTestSuite() {
+        expected_ = scratch("expected");
+        GraderOptions o = options();
+        o.shipped = false;
+        renderExpectedOutputs(o);
+    }
+    static GraderOptions options() {
+        GraderOptions o;
+        o.voxlab = VOXLAB_BINARY;
+        o.referenceRoot = (kSource / "reference").string();
+        o.expectedDir = expected_.string();
+        o.shipped = true;
+        o.jobs = 2;
+        o.renderThreads = 1;
+        o.progress = false;
+        return o;
+    }
+    static json grade(const fs::path& folder, const std::string& name, GraderOptions o = options()) {
+        return gradeSubmissions({{name, folder.string(), scratch("report_" + name).string()}}, o).at(0);
+    }
+    static const json& stage(const json& report, const std::string& id) {
+        for (const json& s : report["stages"])
+            if (s["stage"] == id) return s;
+        throw Error("no stage " + id + " in the report");
+    }
+
+private:
+    static inline fs::path expected_;
+};
+
+TEST_F(Grader, TheReferenceScoresFullMarks) {
+    const json report = grade(kSource / "reference", "reference");
+    ASSERT_EQ(report["stages"].size(), gradedStages((kSource / "reference").string()).size());
+    for (const json& s : report["stages"]) {
+        EXPECT_TRUE(s["status"] == "passed" || s["status"] == "example") << s["stage"] << ": " << s["message"];
+        EXPECT_DOUBLE_EQ(s["score"].get<double>(), s["max_score"].get<double>()) << s["stage"];
+    }
+    EXPECT_GT(report["max_score"].get<double>(), 0.0);
+    EXPECT_DOUBLE_EQ(report["score"].get<double>(), report["max_score"].get<double>());
+}
+
+TEST_F(Grader, ThePristineAssignmentsScoreZeroAndSayNotImplemented) {
+    const json report = grade(kSource / "assignments", "pristine");
+    for (const json& s : report["stages"]) {
+        if (s["stage"] == "slicer") {  // the worked example: complete in the starter code, worth no points
+            EXPECT_EQ(s["status"], "example");
+            EXPECT_EQ(s["max_score"].get<double>(), 0.0);
+            continue;
+        }
+        EXPECT_EQ(s["status"], "not_implemented") << s["stage"] << ": " << s["message"];
+        EXPECT_EQ(s["score"].get<double>(), 0.0) << s["stage"];
+        EXPECT_NE(s["message"].get<std::string>().find("not yet implemented"), std::string::npos) << s["message"];
+    }
+    EXPECT_EQ(report["score"].get<double>(), 0.0);
+}
+
+TEST_F(Grader, HangsCrashesAndCompileErrorsAreReportedInBoundedTime) {
+    const fs::path root = scratch("broken");
+    const fs::path sub = root / "submission";
+    fs::copy(kSource / "reference", sub, fs::copy_options::recursive);
+    auto edit = [&](const std::string& file, const std::string& find, const std::string& replace) {
+        std::string text = readFile(sub / file);
+        const std::size_t at = text.find(find);
+        ASSERT_NE(at, std::string::npos) << file << ": " << find;
+        text.replace(at, find.size(), replace);
+        std::ofstream(sub / file) << text;
+    };
+    // mip: a loop that never ends (a sample is never below -1), whose result
+    // is used, so that the compiler cannot drop it.
+    edit("mip/mip.glsl", "// BEGIN SOLUTION",
+         "// BEGIN SOLUTION\n    vec3 wander = ray.origin;\n"
+         "    while (sample_volume(wander) > -1.0) wander.x += 0.001;\n    if (wander.x > 0.0) return wander.x;");
+    // composite: a syntax error (a missing semicolon) on a known line.
+    edit("composite/composite.glsl", "// BEGIN SOLUTION", "// BEGIN SOLUTION\n    float oops = 1.0");
+    // texslice3d: a crash in C++.
+    edit("texslice3d/proxy_geometry.cpp", "// BEGIN SOLUTION",
+         "// BEGIN SOLUTION\n    if (normal.x > -2.0) *(volatile int*)nullptr = 1;");
+    // texslice2d: C++ that does not compile.
+    edit("texslice2d/slice_axis.cpp", "// BEGIN SOLUTION", "// BEGIN SOLUTION\n    int x = undeclared_thing;");
+    const std::string referenceBefore = fingerprint(kSource / "reference");
+
+    GraderOptions o = options();
+    o.timeLimit = 8.0;
+    o.stages = {"mip", "composite", "texslice2d", "texslice3d"};
+    const auto start = std::chrono::steady_clock::now();
+    const json report = grade(sub, "broken", o);
+    const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // Four stages on two workers, the hang costing its 8 s limit, plus
+    // compiling C++ twice: well under a minute.
+    EXPECT_LT(took, 60.0);
+
+    const json& mip = stage(report, "mip");
+    EXPECT_EQ(mip["status"], "timeout") << mip["message"];
+    EXPECT_NE(mip["message"].get<std::string>().find("timed out after 8 s"), std::string::npos) << mip["message"];
+    EXPECT_EQ(mip["score"].get<double>(), 0.0);
+
+    const json& composite = stage(report, "composite");
+    EXPECT_EQ(composite["status"], "compile_error") << composite["message"];
+    // The compiler's message names the student's file and the line after the
+    // unterminated statement, relative to the submission.
+    const std::string log = composite.value("log", "");
+    EXPECT_EQ(log.rfind("composite/composite.glsl:", 0), 0u) << log;
+    EXPECT_EQ(composite["score"].get<double>(), 0.0);
+
+    const json& slab = stage(report, "texslice2d");
+    EXPECT_EQ(slab["status"], "compile_error");
+    EXPECT_NE(slab.value("log", "").find("texslice2d/slice_axis.cpp:"), std::string::npos) << slab.value("log", "");
+    EXPECT_NE(slab.value("log", "").find("undeclared_thing"), std::string::npos);
+
+    const json& crash = stage(report, "texslice3d");
+    EXPECT_EQ(crash["status"], "crashed") << crash["message"];
+    EXPECT_NE(crash["message"].get<std::string>().find("Segmentation fault"), std::string::npos) << crash["message"];
+
+    EXPECT_EQ(fingerprint(kSource / "reference"), referenceBefore) << "grading changed reference/";
+}
+
+TEST_F(Grader, ASubmissionCannotWriteOutsideItsReportFolder) {
+    const fs::path root = scratch("writer");
+    const fs::path target = root / "escaped.txt";
+    const fs::path sub = mutatedCopy(root / "submission", "texslice3d/proxy_geometry.cpp", "// BEGIN SOLUTION",
+                                     "// BEGIN SOLUTION\n    if (FILE* f = std::fopen(\"" + target.string() +
+                                         "\", \"w\")) { std::fputs(\"x\", f); std::fclose(f); }");
+    // <cstdio> for the write above.
+    std::string text = readFile(sub / "texslice3d/proxy_geometry.cpp");
+    std::ofstream(sub / "texslice3d/proxy_geometry.cpp") << "#include <cstdio>\n" << text;
+    GraderOptions o = options();
+    o.stages = {"texslice3d"};
+    const json report = grade(sub, "writer", o);
+    if (report.value("sandbox", "").find("Landlock") == std::string::npos) GTEST_SKIP() << "no Landlock here";
+    EXPECT_FALSE(fs::exists(target)) << "the submission wrote " << target;
+    // The stage itself still renders: only the write failed.
+    EXPECT_EQ(stage(report, "texslice3d")["status"], "passed") << stage(report, "texslice3d")["message"];
+}
+
+TEST_F(Grader, GradescopeResultsFollowTheFormat) {
+    const fs::path sub = mutatedCopy(scratch("gs") / "submission", "mip/mip.glsl", "// BEGIN SOLUTION",
+                                     "// BEGIN SOLUTION\n    return 0.5;");
+    GraderOptions o = options();
+    o.stages = {"mip", "minip"};
+    const json report = grade(sub, "gs", o);
+    const json results = json::parse(readFile(scratchPath("report_gs") / "results.json"));
+    ASSERT_TRUE(results.contains("score"));
+    ASSERT_TRUE(results["tests"].is_array());
+    double sum = 0.0;
+    for (const json& t : results["tests"]) {
+        for (const char* key : {"name", "score", "max_score", "status", "output", "visibility"})
+            EXPECT_TRUE(t.contains(key)) << key;
+        EXPECT_TRUE(t["status"] == "passed" || t["status"] == "failed");
+        sum += t["score"].get<double>();
+    }
+    EXPECT_NEAR(sum, results["score"].get<double>(), 0.05);
+    EXPECT_NEAR(results["score"].get<double>(), 10.0, 0.05) << "minip full, mip (returns 0.5 everywhere) zero";
+    EXPECT_EQ(stage(report, "mip")["status"], "failed");
+}
+
+TEST(GradingManifest, BadManifestsGiveOneLineErrors) {
+    const fs::path root = scratch("manifests");
+    fs::create_directories(root / "mip");
+    auto expectError = [&](const std::string& text, const std::string& needle) {
+        std::ofstream(root / "mip" / "grading.json") << text;
+        try {
+            loadStageManifest(root.string(), "mip");
+            ADD_FAILURE() << "no error for " << text;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+            EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+        }
+    };
+    expectError("{", "grading.json");
+    expectError(R"({"points": 10})", "title: missing");
+    expectError(R"({"title": "x", "scenes": [{"name": "a/b", "scene": "s.json"}]})", "name");
+    expectError(R"({"title": "x", "scenes": [{"name": "a", "scene": "s.json", "tolerance": {"max_flp": 1}}]})",
+                "unknown key 'max_flp'");
+    EXPECT_THROW(loadStageManifest(root.string(), "nosuchstage"), Error);
+}
+
+TEST(GradingCredit, FallsLinearlyToZeroAtThreeTimesTheThreshold) {
+    EXPECT_EQ(creditForRatio(0.0), 1.0);
+    EXPECT_EQ(creditForRatio(1.0), 1.0);
+    EXPECT_DOUBLE_EQ(creditForRatio(2.0), 0.5);
+    EXPECT_DOUBLE_EQ(creditForRatio(2.5), 0.25);
+    EXPECT_EQ(creditForRatio(3.0), 0.0);
+    EXPECT_EQ(creditForRatio(1e9), 0.0);
+    // Function checks: full credit only with no failing case, none from 10%.
+    EXPECT_EQ(creditForFailedCases(0.0), 1.0);
+    EXPECT_DOUBLE_EQ(creditForFailedCases(0.05), 0.5);
+    EXPECT_EQ(creditForFailedCases(0.1), 0.0);
+    EXPECT_EQ(creditForFailedCases(0.8), 0.0);
+    // The worst metric decides; SSIM counts by 1 - SSIM.
+    Tolerance t;
+    ImageMetrics m;
+    m.fractionOver = 0.5 * t.maxFraction;
+    m.ssim = 1.0 - 2.0 * (1.0 - t.minSsim);
+    m.flipMean = 0.1 * t.maxFlip;
+    EXPECT_DOUBLE_EQ(toleranceRatio(m, t), 2.0);
+}
+
+TEST(StubScan, NamesTheFunctionsStillStubbed) {
+    EXPECT_EQ(unimplementedFunctions((kSource / "assignments/composite").string()),
+              (std::vector<std::string>{"classify_post", "classify_pre", "jitter_start", "composite_front_to_back",
+                                        "composite_back_to_front"}));
+    EXPECT_EQ(unimplementedFunctions((kSource / "assignments/texslice3d").string()),
+              std::vector<std::string>{"planeBoxPolygon"});
+    for (const std::string& s : stageOrder())
+        EXPECT_TRUE(unimplementedFunctions((kSource / "reference" / s).string()).empty()) << s;
+}
+
+}  // namespace
+}  // namespace voxlab::testing

@@ -15,6 +15,7 @@
 #include "voxlab/grader.h"
 #include "voxlab/grading.h"
 #include "voxlab/scene.h"
+#include "support/run_command.h"
 
 namespace voxlab::testing {
 namespace {
@@ -275,6 +276,39 @@ TEST(StubScan, NamesTheFunctionsStillStubbed) {
               std::vector<std::string>{"planeBoxPolygon"});
     for (const std::string& s : stageOrder())
         EXPECT_TRUE(unimplementedFunctions((kSource / "reference" / s).string()).empty()) << s;
+}
+
+// The command line: a class graded with --batch gives a gradebook and a
+// class report; `voxlab check` exits 0 only when the stages checked pass.
+TEST(GradeCommand, BatchWritesAGradebookAndCheckSaysWhatIsMissing) {
+    const fs::path root = scratch("cli");
+    fs::create_directories(root / "class" / "bob" / "minip");
+    fs::create_directories(root / "class" / "carol" / "minip");
+    fs::copy(kSource / "reference" / "minip", root / "class" / "bob" / "minip", fs::copy_options::recursive);
+    fs::copy(kSource / "assignments" / "minip", root / "class" / "carol" / "minip", fs::copy_options::recursive);
+    const CommandResult batch = runVoxlab("grade --batch " + (root / "class").string() + " --stage minip --out " +
+                                              (root / "reports").string() + " --jobs 2 --quiet",
+                                          300);
+    ASSERT_EQ(batch.exitCode, 0) << batch.err;
+    const std::string csv = readFile(root / "reports" / "gradebook.csv");
+    EXPECT_NE(csv.find("name,score,max_score,minip,problems"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("bob,10.00,10.00,10.00,"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("carol,0.00,10.00,0.00,minip: not_implemented"), std::string::npos) << csv;
+    EXPECT_TRUE(fs::exists(root / "reports" / "index.html"));
+    EXPECT_TRUE(fs::exists(root / "reports" / "bob" / "index.html"));
+
+    const CommandResult good = runVoxlab("check --stage minip --submission " + (root / "class" / "bob").string() +
+                                             " --out " + (root / "check_bob").string() + " --quiet",
+                                         300);
+    EXPECT_EQ(good.exitCode, 0) << good.out << good.err;
+    const CommandResult todo = runVoxlab("check --stage minip --submission " + (root / "class" / "carol").string() +
+                                             " --out " + (root / "check_carol").string() + " --quiet",
+                                         300);
+    EXPECT_EQ(todo.exitCode, 1);
+    EXPECT_NE(todo.out.find("minip_ray is not yet implemented"), std::string::npos) << todo.out;
+    const CommandResult bad = runVoxlab("grade --submission " + (root / "class" / "bob").string() + " --stage nope");
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.err.find("unknown stage 'nope'"), std::string::npos) << bad.err;
 }
 
 }  // namespace

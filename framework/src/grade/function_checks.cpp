@@ -604,7 +604,7 @@ json runPlaneBox(const std::string&) {
         const glm::dvec3 lo = grid(rng.inBox(glm::dvec3(-2.0), glm::dvec3(2.0)), 1.0 / 64.0);
         const glm::dvec3 hi = lo + grid(rng.inBox(glm::dvec3(0.25), glm::dvec3(3.0)), 1.0 / 64.0);
         const double diagonal = glm::length(hi - lo);
-        auto corner = [&](int bits) {
+        auto boxCorner = [&](int bits) {  // bit k set: the high side on axis k
             return glm::dvec3(bits & 1 ? hi.x : lo.x, bits & 2 ? hi.y : lo.y, bits & 4 ? hi.z : lo.z);
         };
         auto randomNormal = [&]() {
@@ -617,7 +617,7 @@ json runPlaneBox(const std::string&) {
         // planes must not pass "almost" through a corner).
         auto clearOfCorners = [&](glm::dvec3 n, double d) {
             for (int c = 0; c < 8; ++c)
-                if (std::abs(glm::dot(n, corner(c)) - d) < 1e-4 * diagonal * glm::length(n)) return false;
+                if (std::abs(glm::dot(n, boxCorner(c)) - d) < 1e-4 * diagonal * glm::length(n)) return false;
             return true;
         };
         glm::dvec3 normal;
@@ -636,13 +636,13 @@ json runPlaneBox(const std::string&) {
                 offset = normal[axis] * at;
                 break;
             } else if (kind == 2) {  // through a corner: cutting the box there, or only touching it
-                offset = glm::dot(normal, corner(rng.index(8)));
+                offset = glm::dot(normal, boxCorner(rng.index(8)));
                 break;
             } else if (kind == 3) {  // containing an edge: through the box, or only touching it
                 const int axis = rng.index(3);
                 normal[axis] = 0.0;
                 if (normal == glm::dvec3(0.0)) continue;
-                offset = glm::dot(normal, corner(rng.index(8)));
+                offset = glm::dot(normal, boxCorner(rng.index(8)));
                 break;
             } else if (kind == 4) {  // anywhere near the box, possibly missing it
                 offset = glm::dot(normal, grid(rng.inBox(lo - 0.5 * (hi - lo), hi + 0.5 * (hi - lo)), 1.0 / 1024.0));

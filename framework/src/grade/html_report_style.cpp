@@ -28,7 +28,7 @@ dl.meta div { display: flex; gap: 8px; }
 dl.meta dt { color: #9aa6b2; }
 dl.meta dd { margin: 0; }
 .total { text-align: right; min-width: 220px; }
-.total-score { font-size: 56px; font-weight: 700; line-height: 1; font-variant-numeric: tabular-nums; }
+.total-score { font-size: 56px; font-weight: 700; line-height: 1; font-variant-numeric: tabular-nums; white-space: nowrap; }
 .total-score .of { font-size: 26px; font-weight: 400; color: #9aa6b2; }
 .total .percent { color: #b6c2cf; margin: 6px 0 8px; }
 .total .bar { width: 100%; height: 8px; background: #39434f; }

@@ -13,6 +13,8 @@ namespace voxlab::cli {
 int viewCommand(int argc, char** argv) {
     std::vector<OptionSpec> specs = sceneOptions();
     specs.push_back({"implementation", "DIR", "stage shaders from DIR instead of reference/"});
+    specs.push_back({"student", "DIR", "the implementation switch's student side (default: assignments/)"});
+    specs.push_back({"script", "FILE", "play a viewer script (load, renderer, rotate, split, screenshot, ...) and exit"});
     specs.push_back({"screenshot", "PNG", "render a few frames, save the window to PNG and exit"});
     specs.push_back({"frames", "N", "frames to render before --screenshot (default 3)"});
     specs.push_back({"window-size", "WxH", "window size (default 1280x800)"});
@@ -21,7 +23,9 @@ int viewCommand(int argc, char** argv) {
     const Args args(specs, argc, argv, first, "view");
     if (args.has("help")) {
         std::cout << "usage: voxlab view [DATASET|SCENE.json] [options]\n\n"
-                     "Opens the interactive viewer. With no argument it shows the default scene.\n\n"
+                     "Opens the interactive viewer. With no argument it shows the default scene.\n"
+                     "In the window, H lists the keys. --script FILE drives it without a person (see\n"
+                     "framework/include/voxlab/viewer_script.h) and exits at the end of the script.\n\n"
                   << formatOptions(specs);
         return 0;
     }
@@ -43,6 +47,8 @@ int viewCommand(int argc, char** argv) {
     const Scene scene = sceneFromArgs(args, "view", base ? &*base : nullptr);
     ViewerOptions options;
     options.implementationRoot = args.get("implementation").value_or("");
+    options.studentRoot = args.get("student").value_or("");
+    options.script = args.get("script").value_or("");
     options.screenshot = args.get("screenshot").value_or("");
     options.frames = args.get("frames") ? parseInt(*args.get("frames"), "--frames") : 3;
     if (auto ws = args.get("window-size")) {

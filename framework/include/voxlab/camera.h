@@ -13,6 +13,13 @@
 //    radius. Azimuth 0, elevation 0 is the +z view; azimuth 90 is +x;
 //    positive elevation looks down from above (from -y, the image "up" of the
 //    horizontal views).
+//  - Pan moves the point looked at (the image centre) away from the box
+//    centre, along the image's own right and down directions, in units of
+//    the bounding-sphere radius: pan (0.5, 0) looks at a point half a radius
+//    to the right of the centre, so the volume appears shifted left. Being
+//    tied to the image axes, a pan stays a shift of the image when the view
+//    turns. Both projections and the axis views honour it; the camera is
+//    translated parallel to the image plane, its direction is unchanged.
 #pragma once
 
 #include <optional>
@@ -35,6 +42,7 @@ struct CameraSpec {
     double distance = 4.0;    // in bounding-sphere radii (perspective; 4 fits the box at fov 30)
     double fov = 30.0;        // vertical field of view, degrees (perspective)
     double zoom = 1.0;        // >1 magnifies
+    glm::dvec2 pan{0.0};      // look-at point minus box centre, in bounding-sphere radii along (right, down)
     Projection projection = Projection::Perspective;
 };
 

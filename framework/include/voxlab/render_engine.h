@@ -28,6 +28,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "voxlab/image.h"
 #include "voxlab/renderer.h"
@@ -66,7 +67,17 @@ public:
     Image readBack() const;
 
     // Forgets compiled programs so that the next render re-reads the GLSL.
+    // A program that then fails to compile is replaced by its last good
+    // version (live reload keeps rendering), and shaderError() holds the
+    // compiler's message until the next reload; a program that never
+    // compiled throws ShaderError as usual.
     void reloadShaders();
+    const std::string& shaderError() const { return shaderError_; }
+    // Every shader file the current programs were built from (to watch for edits).
+    std::vector<std::string> shaderSources() const;
+    // The colour texture of the offscreen framebuffer (RGBA32F), for
+    // compositing two engines' images (the viewer's split view).
+    unsigned offscreenTexture() const { return colorTexture_; }
     const std::string& implementationRoot() const { return implementationRoot_; }
 
 private:
@@ -111,6 +122,8 @@ private:
     int layerWidth_ = 0, layerHeight_ = 0;
     float valueScale_ = 1.0f, valueOffset_ = 0.0f;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_;
+    std::map<std::string, std::unique_ptr<ShaderProgram>> previousPrograms_;  // before the last reload
+    std::string shaderError_;
     TransferFunctionSlot tf_[2];  // the scene's, and the cutting plane's other side
     // The gradient volume on the GPU: for which volume (by upload count) and estimator.
     unsigned gradientTexture_ = 0;

@@ -9,6 +9,8 @@ namespace voxlab {
 
 struct ViewerOptions {
     std::string implementationRoot;  // empty: reference/
+    std::string studentRoot;         // the implementation switch's "student" side; empty: assignments/
+    std::string script;              // a viewer script (viewer_script.h) to run instead of a person
     // Scripted use (tests, README screenshots): render `frames` frames, save
     // a screenshot of the whole window to `screenshot`, and close.
     std::string screenshot;

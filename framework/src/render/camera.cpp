@@ -82,6 +82,10 @@ Camera Camera::make(const CameraSpec& spec, glm::dvec3 extent, int width, int he
         cam.down = glm::normalize(glm::cross(cam.forward, cam.right));
     }
 
+    // The point looked at: the box centre moved by the pan, in the image
+    // plane. Adding a zero pan leaves `target` bit-identical to `centre`.
+    const glm::dvec3 target = centre + radius * (spec.pan.x * cam.right + spec.pan.y * cam.down);
+
     if (cam.projection == Projection::Orthographic) {
         // Fit the projected box (axis views) or the bounding sphere (orbits)
         // into the image with one uniform scale, centred.
@@ -93,10 +97,10 @@ Camera Camera::make(const CameraSpec& spec, glm::dvec3 extent, int width, int he
             w = h = 2.0 * radius;
         }
         cam.pixelScale = std::max(w / width, h / height) / zoom;
-        cam.position = centre - cam.forward * (radius * 2.0);
+        cam.position = target - cam.forward * (radius * 2.0);
     } else {
         const double dist = (spec.distance > 0.0 ? spec.distance : 4.0) * radius;
-        cam.position = centre - cam.forward * dist;
+        cam.position = target - cam.forward * dist;
         cam.pixelScale = std::tan(radians(spec.fov) * 0.5) / (0.5 * height) / zoom;
     }
     return cam;

@@ -177,14 +177,36 @@ const ShaderProgram& RenderEngine::program(const std::string& vertexShader, cons
     std::string key = vertexShader + " " + fragmentShader;
     for (const auto& [name, value] : constants) key += " " + name + "=" + std::to_string(value);
     auto it = programs_.find(key);
-    if (it == programs_.end())
-        it = programs_
-                 .emplace(key, std::make_unique<ShaderProgram>(library_, vertexShader, fragmentShader, constants))
-                 .first;
-    return *it->second;
+    if (it != programs_.end()) return *it->second;
+    std::unique_ptr<ShaderProgram> compiled;
+    try {
+        compiled = std::make_unique<ShaderProgram>(library_, vertexShader, fragmentShader, constants);
+    } catch (const ShaderError& e) {
+        // Live reload: an edit that breaks the shader keeps the last good
+        // program running and says why.
+        auto previous = previousPrograms_.find(key);
+        if (previous == previousPrograms_.end()) throw;
+        shaderError_ = e.what();
+        compiled = std::move(previous->second);
+        previousPrograms_.erase(previous);
+    }
+    return *programs_.emplace(key, std::move(compiled)).first->second;
 }
 
-void RenderEngine::reloadShaders() { programs_.clear(); }
+void RenderEngine::reloadShaders() {
+    for (auto& [key, prog] : programs_) previousPrograms_[key] = std::move(prog);
+    programs_.clear();
+    shaderError_.clear();
+}
+
+std::vector<std::string> RenderEngine::shaderSources() const {
+    std::vector<std::string> files;
+    for (const auto* programs : {&programs_, &previousPrograms_})
+        for (const auto& [key, prog] : *programs)
+            for (const std::string& f : prog->sourceFiles())
+                if (std::find(files.begin(), files.end(), f) == files.end()) files.push_back(f);
+    return files;
+}
 
 void RenderEngine::ensureTarget(int width, int height) {
     if (fbo_ && width == fboWidth_ && height == fboHeight_) return;

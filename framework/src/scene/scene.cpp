@@ -86,13 +86,13 @@ private:
 
 void Parser::camera(const json& j, CameraSpec* cam) const {
     if (!j.is_object())
-        fail("camera", "expected an object: {\"view\": \"+z\"} or azimuth/elevation/distance/fov/zoom");
-    onlyKeys(j, "camera", {"view", "azimuth", "elevation", "distance", "fov", "zoom"});
+        fail("camera", "expected an object: {\"view\": \"+z\"} or azimuth/elevation/distance/fov/zoom/pan");
+    onlyKeys(j, "camera", {"view", "azimuth", "elevation", "distance", "fov", "zoom", "pan"});
     if (j.contains("view")) {
         for (const char* orbit : {"azimuth", "elevation", "distance", "fov"})
             if (j.contains(orbit))
                 fail("camera", std::string("'view' cannot be combined with '") + orbit +
-                                   "' (only with 'zoom')");
+                                   "' (only with 'zoom' and 'pan')");
         cam->view = string(j["view"], "camera.view");
         if (!isAxisView(cam->view))
             fail("camera.view", "unknown view '" + cam->view + "' (expected +x -x +y -y +z -z)");
@@ -110,6 +110,13 @@ void Parser::camera(const json& j, CameraSpec* cam) const {
     if (j.contains("zoom")) {
         cam->zoom = number(j["zoom"], "camera.zoom");
         if (cam->zoom <= 0.0) fail("camera.zoom", "expected a number > 0");
+    }
+    if (j.contains("pan")) {
+        // The look-at point's offset from the box centre, in bounding-sphere
+        // radii along the image's right and down directions (camera.h).
+        const json& pan = j["pan"];
+        if (!pan.is_array() || pan.size() != 2) fail("camera.pan", "expected [x, y]");
+        cam->pan = glm::dvec2(number(pan[0], "camera.pan[0]"), number(pan[1], "camera.pan[1]"));
     }
 }
 
@@ -276,6 +283,8 @@ json Scene::toJson() const {
         j["camera"] = {{"azimuth", camera.azimuth}, {"elevation", camera.elevation},
                        {"distance", camera.distance}, {"fov", camera.fov}, {"zoom", camera.zoom}};
     }
+    // A zero pan is left out, so that scenes without one read as before.
+    if (camera.pan != glm::dvec2(0.0)) j["camera"]["pan"] = {camera.pan.x, camera.pan.y};
     j["projection"] = projectionName(camera.projection);
     j["size"] = {width, height};
     j["sampling"] = {{"step", step}, {"interpolation", interpolationName(interpolation)}};

@@ -1,5 +1,5 @@
-// voxlab: the interactive viewer. Left-drag orbits, scroll zooms, the panel
-// switches renderers and edits every declared parameter, R reloads shaders.
+// voxlab: the interactive viewer. The frame loop and the mouse and keys;
+// see viewer_state.h for how the rest is split.
 #include "voxlab_gl.h"
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -7,220 +7,240 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
-#include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "viewer_script_runner.h"
+#include "viewer_state.h"
+#include "voxlab/camera_controller.h"
 #include "voxlab/error.h"
-#include "voxlab/render_engine.h"
 #include "voxlab/viewer.h"
 #include "voxlab/window.h"
 
 namespace voxlab {
+namespace viewer {
 namespace {
 
-struct ViewerState {
-    Scene scene;
-    bool dirty = true;
-    std::string error;       // last render or shader error, shown in an overlay
-    double renderMs = 0.0;
-    bool dragging = false;
-    double lastX = 0, lastY = 0;
-};
+State* g_state = nullptr;  // for GLFW's drop callback, which has no user pointer of ours
 
-void drawPanel(ViewerState& s, RenderEngine& engine, const Volume& volume) {
-    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
-    ImGui::Begin("voxlab");
-    const glm::ivec3 d = volume.dims();
-    ImGui::Text("%s  %dx%dx%d %s", volume.name().c_str(), d.x, d.y, d.z, voxelTypeName(volume.type()));
-    ImGui::Text("values %g .. %g", volume.minValue(), volume.maxValue());
-    ImGui::Separator();
-
-    if (ImGui::BeginCombo("renderer", s.scene.renderer.c_str())) {
-        for (const auto& r : rendererRegistry().all()) {
-            if (ImGui::Selectable(r->id().c_str(), r->id() == s.scene.renderer)) {
-                s.scene.renderer = r->id();
-                s.scene.parameters.clear();
-                s.dirty = true;
-            }
-            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", r->description().c_str());
-        }
-        ImGui::EndCombo();
-    }
-    // One widget per declared parameter: the panel is generated, never hand-made.
-    const Renderer& renderer = rendererRegistry().get(s.scene.renderer);
-    for (const ParameterSpec& p : renderer.parametersFor(volume.valueRange())) {
-        ImGui::PushID(p.name.c_str());
-        double& value = s.scene.parameters.try_emplace(p.name, p.defaultValue).first->second;
-        if (p.type == ParameterType::Bool) {
-            bool b = value != 0.0;
-            if (ImGui::Checkbox(p.name.c_str(), &b)) value = b, s.dirty = true;
-        } else if (p.type == ParameterType::Int) {
-            int i = int(value);
-            if (ImGui::SliderInt(p.name.c_str(), &i, int(p.minValue), int(p.maxValue))) value = i, s.dirty = true;
-        } else {
-            float f = float(value);
-            const double limit = p.dataUnits ? 1e30 : 512.0;
-            const float lo = float(std::max(p.minValue, -limit)), hi = float(std::min(p.maxValue, limit));
-            if (ImGui::SliderFloat(p.name.c_str(), &f, lo, hi)) value = f, s.dirty = true;
-        }
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.description.c_str());
-        ImGui::PopID();
-    }
-    ImGui::Separator();
-
-    float step = float(s.scene.step);
-    if (ImGui::SliderFloat("step", &step, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
-        s.scene.step = step, s.dirty = true;
-    int interp = int(s.scene.interpolation);
-    if (ImGui::Combo("interpolation", &interp, "nearest\0trilinear\0hardware\0"))
-        s.scene.interpolation = Interpolation(interp), s.dirty = true;
-    int proj = s.scene.camera.projection == Projection::Orthographic ? 0 : 1;
-    if (ImGui::Combo("projection", &proj, "orthographic\0perspective\0"))
-        s.scene.camera.projection = proj == 0 ? Projection::Orthographic : Projection::Perspective, s.dirty = true;
-
-    glm::dvec2 w = s.scene.window.value_or(volume.valueRange());
-    float lo = float(w.x), hi = float(w.y);
-    const float speed = float((volume.maxValue() - volume.minValue()) / 500.0 + 1e-6);
-    if (ImGui::DragFloatRange2("window", &lo, &hi, speed, float(volume.minValue()), float(volume.maxValue()))) {
-        if (hi > lo) s.scene.window = glm::dvec2(lo, hi), s.dirty = true;
-    }
-    bool useTf = s.scene.transferFunction.has_value();
-    if (ImGui::Checkbox("transfer function", &useTf)) {
-        s.scene.transferFunction.reset();
-        if (useTf) s.scene.transferFunction = TransferFunction::ramp(w.x, w.y);
-        s.dirty = true;
-    }
-
-    ImGui::Text("view");
-    for (const char* v : {"+x", "-x", "+y", "-y", "+z", "-z"}) {
-        ImGui::SameLine();
-        if (ImGui::SmallButton(v)) s.scene.camera.view = v, s.dirty = true;
-    }
-    if (ImGui::Button("reload shaders (R)")) engine.reloadShaders(), s.dirty = true;
-    ImGui::Text("render %.1f ms at %dx%d", s.renderMs, s.scene.width, s.scene.height);
-    ImGui::TextDisabled("drag: orbit   scroll: zoom   1-9: renderer");
-    ImGui::End();
-
-    if (!s.error.empty()) {
-        ImGui::SetNextWindowPos(ImVec2(360, 10), ImGuiCond_Always);
-        ImGui::Begin("error", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
-        ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", s.error.c_str());
-        ImGui::End();
-    }
+void onDrop(GLFWwindow*, int count, const char** paths) {
+    if (!g_state) return;
+    for (int i = 0; i < count; ++i) g_state->dropped.push_back(paths[i]);
 }
 
-void handleInput(GLFWwindow* window, ViewerState& s, RenderEngine& engine) {
-    ImGuiIO& io = ImGui::GetIO();
+// The pixel of the rendered image under window point (x, y) (window
+// coordinates, which differ from framebuffer pixels on high-DPI screens).
+glm::ivec2 imagePixel(const State& s, double x, double y, GLFWwindow* window) {
+    int ww, wh;
+    glfwGetWindowSize(window, &ww, &wh);
+    const double fx = ww > 0 ? double(s.fbWidth) / ww : 1.0, fy = wh > 0 ? double(s.fbHeight) / wh : 1.0;
+    return {int(std::floor(x * fx)), int(std::floor(y * fy))};
+}
+
+void handleMouse(GLFWwindow* window, State& s) {
+    const ImGuiIO& io = ImGui::GetIO();
     double x, y;
     glfwGetCursorPos(window, &x, &y);
-    const bool down = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    if (down && !s.dragging && !io.WantCaptureMouse) s.dragging = true;
-    if (!down) s.dragging = false;
-    if (s.dragging && (x != s.lastX || y != s.lastY)) {
-        CameraSpec& c = s.scene.camera;
-        if (!c.view.empty()) axisViewOrbitAngles(c.view, &c.azimuth, &c.elevation), c.view.clear();
-        c.azimuth += 0.4 * (x - s.lastX);
-        // No clamp: the orbit passes smoothly over the poles (the image's up
-        // direction turns with it), so elevation just wraps to (-180, 180].
-        c.elevation = std::remainder(c.elevation + 0.4 * (y - s.lastY), 360.0);
-        s.dirty = true;
+    const bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    const bool other = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
+                       glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    const bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
+    const glm::ivec2 px = imagePixel(s, x, y, window);
+    const bool nearDivider = s.split == SplitMode::Split && std::abs(px.x - s.divider * s.fbWidth) < 8 * s.contentScale;
+    const bool startable = !io.WantCaptureMouse && !s.dragging && !s.panning && !s.draggingDivider;
+    if (startable && left && nearDivider) s.draggingDivider = true;
+    else if (startable && left && !shift) s.dragging = true, s.pressX = x, s.pressY = y, s.moved = false;
+    else if (startable && (other || (left && shift))) s.panning = true, s.moved = true;
+
+    const double dx = x - s.lastX, dy = y - s.lastY;
+    const glm::ivec2 last = imagePixel(s, s.lastX, s.lastY, window);
+    if (s.draggingDivider) {
+        s.divider = std::clamp(float(px.x) / float(std::max(1, s.fbWidth)), 0.02f, 0.98f);
+        if (!left) s.draggingDivider = false;
+    }
+    if (s.dragging) {
+        if (std::abs(x - s.pressX) + std::abs(y - s.pressY) > 3) s.moved = true;
+        if (s.moved && (dx != 0 || dy != 0)) {
+            orbitCamera(&s.scene.camera, s.volume->extent(), px.x - last.x, px.y - last.y, s.fbWidth, s.fbHeight);
+            s.dirty = true;
+            s.lastInput = Clock::now();
+        }
+        if (!left) {
+            if (!s.moved && s.showProfile) pickRayProfile(s, px);  // a click, not a drag
+            s.dragging = false;
+        }
+    }
+    if (s.panning) {
+        if (dx != 0 || dy != 0) {
+            panCamera(&s.scene.camera, s.volume->extent(), px.x - last.x, px.y - last.y, s.fbWidth, s.fbHeight);
+            s.dirty = true;
+            s.lastInput = Clock::now();
+        }
+        if (!left && !other) s.panning = false;
     }
     s.lastX = x, s.lastY = y;
     if (io.MouseWheel != 0.0f && !io.WantCaptureMouse) {
-        s.scene.camera.zoom *= std::pow(1.1, io.MouseWheel);
+        zoomCamera(&s.scene.camera, io.MouseWheel);
         s.dirty = true;
-    }
-    if (!io.WantCaptureKeyboard) {
-        if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) engine.reloadShaders(), s.dirty = true;
-        const auto& all = rendererRegistry().all();
-        for (int k = 0; k < 9 && k < int(all.size()); ++k)
-            if (ImGui::IsKeyPressed(GLFW_KEY_1 + k, false))
-                s.scene.renderer = all[k]->id(), s.scene.parameters.clear(), s.dirty = true;
+        s.lastInput = Clock::now();
     }
 }
 
-void saveWindowScreenshot(int width, int height, const std::string& path) {
-    Image img(width, height);
-    std::vector<unsigned char> rows(std::size_t(width) * height * 4);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    glReadBuffer(GL_BACK);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
-    for (int yy = 0; yy < height; ++yy)
-        for (int xx = 0; xx < width; ++xx) {
-            const unsigned char* p = &rows[(std::size_t(height - 1 - yy) * width + xx) * 4];
-            img.set(xx, yy, glm::vec4(p[0], p[1], p[2], 255) / 255.0f);
+void handleKeys(State& s) {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.WantCaptureKeyboard) return;
+    // ImGui 1.86 (Debian 12): keys are the GLFW backend's key codes.
+    auto pressed = [](int glfwKey) { return ImGui::IsKeyPressed(glfwKey, false); };
+    const auto& all = rendererRegistry().all();
+    for (int k = 0; k < 9 && k < int(all.size()); ++k)
+        if (pressed(GLFW_KEY_1 + k))
+            s.scene.renderer = all[k]->id(), s.scene.parameters.clear(), s.dirty = true;
+    if (pressed(GLFW_KEY_R)) {
+        s.main.engine->reloadShaders();
+        if (s.other.engine) s.other.engine->reloadShaders();
+        s.dirty = true;
+    }
+    if (pressed(GLFW_KEY_S)) s.split = SplitMode((int(s.split) + 1) % 3), s.dirty = true;
+    if (pressed(GLFW_KEY_I)) {
+        try {
+            setImplementation(s.main, s.main.implementation.empty() ? s.studentRoot : "", *s.volume);
+            s.say(std::string("left side: ") + (s.main.implementation.empty() ? "reference" : "student"), 2.0);
+        } catch (const Error& e) {
+            s.say(e.what());
         }
-    savePng(img, path);
+        s.dirty = true;
+    }
+    const bool minus = io.KeyShift;
+    if (pressed(GLFW_KEY_X)) setAxisView(&s.scene.camera, minus ? "-x" : "+x"), s.dirty = true;
+    if (pressed(GLFW_KEY_Y) && !io.KeyCtrl) setAxisView(&s.scene.camera, minus ? "-y" : "+y"), s.dirty = true;
+    if (pressed(GLFW_KEY_Z) && !io.KeyCtrl) setAxisView(&s.scene.camera, minus ? "-z" : "+z"), s.dirty = true;
+    if (pressed(GLFW_KEY_O)) {
+        s.scene.camera.projection = s.scene.camera.projection == Projection::Orthographic ? Projection::Perspective
+                                                                                          : Projection::Orthographic;
+        s.dirty = true;
+    }
+    if (pressed(GLFW_KEY_SPACE)) resetCamera(&s.scene.camera), s.dirty = true;
+    if (pressed(GLFW_KEY_H) || pressed(GLFW_KEY_F1)) s.showHelp = !s.showHelp;
+    if (pressed(GLFW_KEY_T)) s.showTransferFunction = !s.showTransferFunction;
+    if (pressed(GLFW_KEY_L)) s.showSlices = !s.showSlices;
+    if (pressed(GLFW_KEY_F)) s.showProfile = !s.showProfile;
+    if (pressed(GLFW_KEY_TAB)) s.showPanel = !s.showPanel;
+    if (pressed(GLFW_KEY_P)) s.screenshotRequest = timestampedScreenshotName();
+    if (pressed(GLFW_KEY_ESCAPE)) s.showHelp = false;
+}
+
+void loadDropped(State& s) {
+    std::vector<std::string> files;
+    files.swap(s.dropped);
+    for (const std::string& f : files) {
+        try {
+            loadDataset(s, f);
+            s.say("opened " + f, 2.5);
+        } catch (const std::exception& e) {
+            s.say(e.what(), 8.0);  // a bad file is a message, never a crash
+        }
+    }
+}
+
+// High-DPI: ImGui's sizes and font follow the window's content scale.
+float applyContentScale(GLFWwindow* window) {
+    float sx = 1.0f, sy = 1.0f;
+    glfwGetWindowContentScale(window, &sx, &sy);
+    const float scale = std::max(1.0f, std::max(sx, sy));
+    ImGui::GetStyle().ScaleAllSizes(scale);
+    ImGui::GetIO().FontGlobalScale = scale;
+    return scale;
 }
 
 }  // namespace
+}  // namespace viewer
 
 int runViewer(const Scene& initial, const ViewerOptions& options) {
-    const Volume volume = loadVolume(initial.dataset);
-    GlfwWindow window(options.width, options.height, "voxlab - " + volume.name());
-    RenderEngine engine(options.implementationRoot);
-    engine.setVolume(volume);
+    using namespace viewer;
+    State s;
+    s.scene = initial;
+    s.studentRoot = options.studentRoot.empty() ? projectRoot() + "/assignments" : options.studentRoot;
+    auto volume = std::make_unique<Volume>(loadVolume(initial.dataset));
+    GlfwWindow window(options.width, options.height, "voxlab");
+    setImplementation(s.main, options.implementationRoot, *volume);
+    s.volume = std::move(volume);
+    s.slices = initialSliceCursor(*s.volume);
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini litter in the working folder
     ImGui::StyleColorsDark();
+    ImGui::GetStyle().WindowRounding = 6.0f;
+    ImGui::GetStyle().FrameRounding = 3.0f;
     ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
     ImGui_ImplOpenGL3_Init("#version 330 core");
+    s.contentScale = applyContentScale(window.handle());
+    g_state = &s;
+    glfwSetDropCallback(window.handle(), onDrop);
+    glfwSwapInterval(options.script.empty() ? 1 : 0);
 
-    ViewerState s;
-    s.scene = initial;
-    glfwSwapInterval(1);
+    std::unique_ptr<ScriptRunner> script;
+    if (!options.script.empty()) script = std::make_unique<ScriptRunner>(options.script);
+    int exitCode = 0;
     int frame = 0;
     while (!glfwWindowShouldClose(window.handle())) {
         glfwPollEvents();
+        const auto frameStart = Clock::now();
+        glfwGetFramebufferSize(window.handle(), &s.fbWidth, &s.fbHeight);
+        if (s.fbWidth != s.imageWidth || s.fbHeight != s.imageHeight) s.dirty = s.dirty || !s.interactive;
+        if (script) {
+            try {
+                if (script->step(s, window.handle()) == ScriptRunner::Done) break;
+            } catch (const Error& e) {
+                std::fprintf(stderr, "voxlab: %s\n", e.what());
+                exitCode = 1;
+                break;
+            }
+        }
+        loadDropped(s);
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();
-        handleInput(window.handle(), s, engine);
-        drawPanel(s, engine, volume);
-
-        int fbw, fbh;
-        glfwGetFramebufferSize(window.handle(), &fbw, &fbh);
-        if (fbw != s.scene.width || fbh != s.scene.height) s.scene.width = fbw, s.scene.height = fbh, s.dirty = true;
-        if (s.dirty && fbw > 0 && fbh > 0) {
-            const auto t0 = std::chrono::steady_clock::now();
-            try {
-                engine.renderOffscreen(s.scene);
-                glFinish();
-                s.error.clear();
-            } catch (const Error& e) {
-                s.error = e.what();  // keep showing the last good image
-            }
-            s.renderMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-            s.dirty = false;
-        }
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-        glViewport(0, 0, fbw, fbh);
-        glClearColor(0, 0, 0, 1);
-        glClear(GL_COLOR_BUFFER_BIT);
-        if (engine.offscreenFramebuffer()) {
-            glBindFramebuffer(GL_READ_FRAMEBUFFER, engine.offscreenFramebuffer());
-            glBlitFramebuffer(0, 0, s.scene.width, s.scene.height, 0, 0, fbw, fbh, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-            glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        }
+        handleMouse(window.handle(), s);
+        handleKeys(s);
+        drawPanels(s);
+        drawOverlays(s);
+        renderFrame(s);
+        presentFrame(s);
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         ++frame;
+        if (!s.screenshotRequest.empty()) {
+            try {
+                saveWindowScreenshot(s.fbWidth, s.fbHeight, s.screenshotRequest);
+                if (script) std::printf("%s\n", s.screenshotRequest.c_str());  // no toast in the next shot
+                else s.say("saved " + s.screenshotRequest, 3.0);
+            } catch (const Error& e) {
+                s.say(e.what(), 6.0);
+            }
+            s.screenshotRequest.clear();
+        }
         if (!options.screenshot.empty() && frame >= std::max(options.frames, 2)) {
-            saveWindowScreenshot(fbw, fbh, options.screenshot);
+            saveWindowScreenshot(s.fbWidth, s.fbHeight, options.screenshot);
             std::printf("%s\n", options.screenshot.c_str());
             break;
         }
         glfwSwapBuffers(window.handle());
+        s.frameMs = std::chrono::duration<double, std::milli>(Clock::now() - frameStart).count();
+        // Idle: nothing to render and no input; don't spin the CPU.
+        if (!script && !s.dirty && !s.interactive && !s.dragging && !s.panning) glfwWaitEventsTimeout(0.25);
     }
+    g_state = nullptr;
+    s.main.engine.reset();
+    s.other.engine.reset();
+    s.sliceViewer.reset();
+    s.presenter.reset();
+    releaseTransferFunctionEditorTextures();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
-    return 0;
+    return exitCode;
 }
 
 }  // namespace voxlab

@@ -1,0 +1,75 @@
+// voxlab: viewer scripts, the steps that `voxlab view --script FILE` plays
+// to drive the viewer without a person (CI, README screenshots).
+//
+// One step per line: a command and its arguments, separated by blanks.
+// `#` outside double quotes starts a comment; blank lines are skipped; an
+// argument with blanks or `#` goes in double quotes ("my data/a b.nrrd").
+//
+//   load PATH                      a dataset or a scene .json (resolveDataPath)
+//   scene PATH                     a scene .json
+//   renderer NAME
+//   param NAME VALUE               a renderer parameter: a number, true or false
+//   step X                         sampling step (voxels), > 0
+//   interpolation nearest|trilinear|hardware
+//   tf PATH|none                   a transfer-function file, or none
+//   camera SETTING VALUE...        settings: azimuth A, elevation E, distance D,
+//                                  fov F, zoom Z, pan X Y, view +x|-x|+y|-y|+z|-z,
+//                                  projection perspective|orthographic
+//   rotate AZIMUTH ELEVATION       orbit by degrees
+//   window LO HI                   grey window in data units, HI > LO
+//   split on|off|difference        student | reference side by side, or the heat map
+//   divider X                      the split's divider at X (0..1) of the window's width
+//   right RENDERER|same            the right side's technique (default: the same as the left)
+//   implementation DIR|reference|student   what the left side (or the only view) runs
+//   panel slices|tf|tf2d|profile|help|controls on|off
+//   click X Y                      a left click at window pixel (X, Y)
+//   size WIDTH HEIGHT              window size in pixels
+//   wait N                         render N frames
+//   screenshot PATH                save the window as PNG
+//   quit
+//
+// Every command's argument count and number formats are checked when the
+// script is read; errors are one line, "FILE:LINE: rotate: expected 2 numbers".
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "voxlab/camera.h"
+
+namespace voxlab {
+
+struct ViewerStep {
+    std::string command;
+    std::vector<std::string> args;
+    int line = 0;      // 1-based line in the script
+    std::string file;  // the script's path as given, for messages
+};
+
+// Reads and checks a script; throws voxlab::Error naming FILE:LINE.
+std::vector<ViewerStep> parseViewerScript(const std::string& path);
+// The same for a script's text; `name` stands for the file in messages and
+// its folder anchors relative paths (dataPath).
+std::vector<ViewerStep> parseViewerScriptText(const std::string& text, const std::string& name);
+
+// "FILE:LINE", and an Error "FILE:LINE: COMMAND: message" for the executor's
+// own failures (a dataset that does not load, an unknown renderer, ...).
+std::string stepLocation(const ViewerStep& step);
+[[noreturn]] void failStep(const ViewerStep& step, const std::string& message);
+
+// Typed access to argument i (0-based); each throws a located Error when the
+// argument is missing or of another kind (parsing already checked the kinds).
+const std::string& word(const ViewerStep& step, int i);
+double number(const ViewerStep& step, int i);  // "true"/"false" read as 1/0 (param values)
+int integer(const ViewerStep& step, int i);
+bool onOff(const ViewerStep& step, int i);  // "on" or "off"
+// A data file named by argument i, found like the CLI does (resolveDataPath),
+// also looking in the script's folder.
+std::string dataPath(const ViewerStep& step, int i);
+
+// Applies a "camera" step's settings, in order, to a camera. Setting azimuth
+// or elevation leaves an axis view for the equivalent orbit first; "view"
+// sets only the view (pan and zoom are kept).
+void applyCameraStep(const ViewerStep& step, CameraSpec* camera);
+
+}  // namespace voxlab

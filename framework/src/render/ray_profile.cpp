@@ -1,0 +1,523 @@
+// voxlab: the ray profile of one pixel (see ray_profile.h). Plain CPU code in
+// double precision, written from the README's rendering conventions; the
+// GPU renderers are its test oracle, not its source.
+#include "voxlab/ray_profile.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <optional>
+
+#include "voxlab/camera.h"
+#include "voxlab/error.h"
+#include "voxlab/renderer.h"
+#include "voxlab/transfer_function.h"
+
+namespace voxlab {
+namespace {
+
+std::string format(const char* fmt, double a, double b = 0.0) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, fmt, a, b);
+    return buf;
+}
+
+// Reading the volume between voxels: continuous voxel coordinates put voxel
+// i's cell at [i, i+1], so its centre is at i + 1/2; indices are clamped to
+// the grid (the border value continues outwards).
+class VolumeReader {
+public:
+    VolumeReader(const Volume& volume, Interpolation interpolation)
+        : volume_(volume), dims_(volume.dims()), extent_(volume.extent()), interpolation_(interpolation) {}
+
+    double voxel(glm::ivec3 ijk) const {
+        ijk = glm::clamp(ijk, glm::ivec3(0), dims_ - 1);
+        return volume_.value(ijk.x, ijk.y, ijk.z);
+    }
+    glm::dvec3 voxelCoordinates(const glm::dvec3& p) const { return p / extent_ * glm::dvec3(dims_); }
+
+    double sample(const glm::dvec3& p) const {
+        if (interpolation_ == Interpolation::Nearest) return voxel(glm::ivec3(glm::floor(voxelCoordinates(p))));
+        return trilinear(p);  // "hardware" too: the GPU's filter, without its reduced-precision weights
+    }
+
+    // Shifted by -1/2 the voxel centres sit on integers: the lower corner is
+    // floor(u) and the weights along each axis are the fractional parts.
+    double trilinear(const glm::dvec3& p) const {
+        const glm::dvec3 u = voxelCoordinates(p) - 0.5;
+        const glm::dvec3 lower = glm::floor(u);
+        const glm::dvec3 w = u - lower;
+        const glm::ivec3 base(lower);
+        double sum = 0.0;
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::ivec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+            const double weight = (o.x ? w.x : 1.0 - w.x) * (o.y ? w.y : 1.0 - w.y) * (o.z ? w.z : 1.0 - w.z);
+            sum += weight * voxel(base + o);
+        }
+        return sum;
+    }
+
+    const Volume& volume() const { return volume_; }
+    glm::ivec3 dims() const { return dims_; }
+    glm::dvec3 extent() const { return extent_; }
+    Interpolation interpolation() const { return interpolation_; }
+
+private:
+    const Volume& volume_;
+    glm::ivec3 dims_;
+    glm::dvec3 extent_;
+    Interpolation interpolation_;
+};
+
+// The gradient in data units per unit length (the smallest spacing), by the
+// README's estimators: central differences of the interpolated volume at
+// p -+ one spacing along each axis (the two points kept within the range of
+// voxel centres, dividing by the distance left), or the 26-neighbour
+// version that averages those differences over the 3x3 parallel lines with
+// weights [1 2 1] x [1 2 1] / 16. Precomputed gradients are the same
+// estimators at the voxels (one-sided at the faces), blended trilinearly.
+class GradientReader {
+public:
+    GradientReader(const VolumeReader& reader, bool sobel, bool precomputed)
+        : reader_(reader), sobel_(sobel), precomputed_(precomputed),
+          spacing_(reader.volume().spacing()), minSpacing_(reader.volume().minSpacing()) {}
+
+    glm::dvec3 at(const glm::dvec3& p) const {
+        if (precomputed_) return precomputedAt(p);
+        glm::dvec3 g(0.0);
+        for (int axis = 0; axis < 3; ++axis) {
+            if (!sobel_) {
+                g[axis] = difference(p, axis);
+                continue;
+            }
+            const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+            double sum = 0.0;
+            for (int da = -1; da <= 1; ++da)
+                for (int db = -1; db <= 1; ++db) {
+                    glm::dvec3 q = p;
+                    q[a] += da * spacing_[a];
+                    q[b] += db * spacing_[b];
+                    sum += (2 - std::abs(da)) * (2 - std::abs(db)) * difference(q, axis);
+                }
+            g[axis] = sum / 16.0;
+        }
+        return g * minSpacing_;
+    }
+
+private:
+    // d f / d x_axis at p, per world unit.
+    double difference(const glm::dvec3& p, int axis) const {
+        const double h = spacing_[axis];
+        const double lowest = 0.5 * h, highest = reader_.extent()[axis] - 0.5 * h;
+        glm::dvec3 a = p, b = p;
+        a[axis] = std::clamp(p[axis] - h, lowest, highest);
+        b[axis] = std::clamp(p[axis] + h, lowest, highest);
+        const double distance = b[axis] - a[axis];
+        return distance > 0.0 ? (reader_.sample(b) - reader_.sample(a)) / distance : 0.0;
+    }
+
+    // The estimator at voxel ijk (inside the grid), per unit length.
+    glm::dvec3 atVoxel(glm::ivec3 ijk) const {
+        const glm::ivec3 dims = reader_.dims();
+        glm::dvec3 g(0.0);
+        for (int axis = 0; axis < 3; ++axis) {
+            const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+            double sum = 0.0, weights = 0.0;
+            for (int da = -1; da <= 1; ++da)
+                for (int db = -1; db <= 1; ++db) {
+                    if (!sobel_ && (da != 0 || db != 0)) continue;
+                    glm::ivec3 line = ijk;
+                    line[a] = std::clamp(line[a] + da, 0, dims[a] - 1);
+                    line[b] = std::clamp(line[b] + db, 0, dims[b] - 1);
+                    glm::ivec3 lo = line, hi = line;
+                    lo[axis] = std::max(line[axis] - 1, 0);
+                    hi[axis] = std::min(line[axis] + 1, dims[axis] - 1);
+                    const double distance = (hi[axis] - lo[axis]) * spacing_[axis];
+                    const double d = distance > 0.0 ? (reader_.voxel(hi) - reader_.voxel(lo)) / distance : 0.0;
+                    const double weight = (2 - std::abs(da)) * (2 - std::abs(db));
+                    sum += weight * d, weights += weight;
+                }
+            g[axis] = sum / weights;
+        }
+        return g * minSpacing_;
+    }
+
+    glm::dvec3 precomputedAt(const glm::dvec3& p) const {
+        const glm::dvec3 u = reader_.voxelCoordinates(p) - 0.5;
+        const glm::dvec3 lower = glm::floor(u);
+        const glm::dvec3 w = u - lower;
+        const glm::ivec3 base(lower);
+        glm::dvec3 sum(0.0);
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::ivec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+            const double weight = (o.x ? w.x : 1.0 - w.x) * (o.y ? w.y : 1.0 - w.y) * (o.z ? w.z : 1.0 - w.z);
+            sum += weight * atVoxel(glm::clamp(base + o, glm::ivec3(0), reader_.dims() - 1));
+        }
+        return sum;
+    }
+
+    const VolumeReader& reader_;
+    bool sobel_, precomputed_;
+    glm::dvec3 spacing_;
+    double minSpacing_;
+};
+
+// Two-sided Phong or Blinn-Phong lighting with a directional light (README,
+// "Shading").
+struct Lighting {
+    bool on = false, blinn = false;
+    double ka = 0.2, kd = 0.7, ks = 0.3, shininess = 24.0;
+    double minGradient = 0.0;  // data units per unit length
+    glm::dvec3 light{0.0};     // towards the light
+
+    Lighting(const ParameterValues& v, const Camera& cam, double valueSpan) {
+        auto get = [&](const char* name, double fallback) {
+            const auto it = v.find(name);
+            return it == v.end() ? fallback : it->second;
+        };
+        on = get("shading", 0.0) != 0.0;
+        blinn = get("blinn", 0.0) != 0.0;
+        ka = get("ka", ka), kd = get("kd", kd), ks = get("ks", ks), shininess = get("shininess", shininess);
+        minGradient = get("min_gradient", 0.0) * valueSpan;
+        // The view direction turned towards the image's right by the azimuth
+        // and towards its top (-down) by the elevation.
+        const double az = glm::radians(get("light_azimuth", 0.0)), el = glm::radians(get("light_elevation", 0.0));
+        light = glm::normalize(-cam.forward * (std::cos(az) * std::cos(el)) +
+                               cam.right * (std::sin(az) * std::cos(el)) - cam.down * std::sin(el));
+    }
+
+    glm::dvec3 shade(const glm::dvec3& colour, const glm::dvec3& gradient, const glm::dvec3& rayDirection) const {
+        if (!on) return colour;
+        const double length = glm::length(gradient);
+        if (length == 0.0 || length <= minGradient) return colour;  // flat: the normal is noise
+        const glm::dvec3 view = -rayDirection;
+        glm::dvec3 normal = -gradient / length;
+        if (glm::dot(normal, view) < 0.0) normal = -normal;
+        const double diffuse = std::max(glm::dot(normal, light), 0.0);
+        double specular;
+        if (blinn) {
+            specular = std::max(glm::dot(normal, glm::normalize(light + view)), 0.0);
+        } else {
+            const glm::dvec3 reflected = 2.0 * glm::dot(normal, light) * normal - light;  // light mirrored about n
+            specular = std::max(glm::dot(reflected, view), 0.0);
+        }
+        const double highlight = diffuse > 0.0 ? std::pow(specular, shininess) : 0.0;
+        return (ka + kd * diffuse) * colour + glm::dvec3(ks * highlight);
+    }
+};
+
+// Clips [*t0, *t1] to the box [lo, hi] (slab method); t0 never goes behind
+// the origin. Returns whether anything is left.
+bool clipToBox(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& lo, const glm::dvec3& hi,
+               double* t0, double* t1) {
+    double enter = 0.0, leave = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        if (dir[a] == 0.0) {
+            if (origin[a] < lo[a] || origin[a] > hi[a]) return false;  // parallel to this slab, outside it
+            continue;
+        }
+        const double ta = (lo[a] - origin[a]) / dir[a], tb = (hi[a] - origin[a]) / dir[a];
+        enter = std::max(enter, std::min(ta, tb));
+        leave = std::min(leave, std::max(ta, tb));
+    }
+    *t0 = enter, *t1 = leave;
+    return leave > enter;
+}
+
+// Keeps the part of [*t0, *t1] where dot(p - point, normal) >= 0.
+bool clipToHalfSpace(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& point,
+                     const glm::dvec3& normal, double* t0, double* t1) {
+    const double along = glm::dot(dir, normal), start = glm::dot(origin - point, normal);
+    if (std::abs(along) < 1e-12) return start >= 0.0 && *t1 > *t0;
+    const double t = -start / along;  // where the ray crosses the plane
+    if (along > 0.0) *t0 = std::max(*t0, t);
+    else *t1 = std::min(*t1, t);
+    return *t1 > *t0;
+}
+
+// The GPU's per-pixel random number for jitter (shaders/voxlab/ray.glsl,
+// pixel_random): an integer hash of the fragment's integer coordinates,
+// whose rows count from the bottom. A profile must use the very same number
+// to land on the same samples.
+double pixelRandom(int px, int py, int height) {
+    const std::uint32_t x = std::uint32_t(px), y = std::uint32_t(height - 1 - py);
+    std::uint32_t h = x * 1973u + y * 9277u + 26699u;
+    h = (h ^ (h >> 15)) * 2654435769u;
+    h ^= h >> 13;
+    h *= 1274126177u;
+    h ^= h >> 16;
+    return double(h >> 8) / 16777216.0;
+}
+
+// How the projection renderers show one value: opaque grey through the
+// window, or the transfer function's colour with its opacity. Returns the
+// colour and opacity, not premultiplied.
+glm::dvec4 displayColour(double value, const glm::dvec2& window, const TransferFunction* tf) {
+    if (tf) return glm::dvec4(tf->evaluate(value));
+    const double span = window.y - window.x;
+    const double grey = span > 0.0 ? std::clamp((value - window.x) / span, 0.0, 1.0) : (value >= window.x ? 1.0 : 0.0);
+    return glm::dvec4(grey, grey, grey, 1.0);
+}
+
+glm::dvec4 premultiply(const glm::dvec4& c) { return glm::dvec4(glm::dvec3(c) * c.a, c.a); }
+
+// Depth as grey (README, "Depth"): 1 where the ray enters the bounding
+// sphere of the box, 0 where it leaves.
+double depthGrey(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& extent, double t) {
+    const glm::dvec3 centre = 0.5 * extent;
+    const double radius = 0.5 * glm::length(extent);
+    const double tNear = glm::dot(centre - origin, dir) - radius;
+    return std::clamp(1.0 - (t - tNear) / (2.0 * radius), 0.0, 1.0);
+}
+
+bool modelledRenderer(const std::string& id) {
+    for (const char* known : {"composite", "mip", "slab_mip", "minip", "average", "firsthit", "iso"})
+        if (id == known) return true;
+    return false;
+}
+
+void addNote(RayProfile& profile, const std::string& text) {
+    profile.note += (profile.note.empty() ? "" : "; ") + text;
+}
+
+}  // namespace
+
+glm::vec3 profilePixel(const RayProfile& profile, const glm::vec3& background) {
+    return glm::vec3(profile.result) + (1.0f - profile.result.a) * background;
+}
+
+RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, int py) {
+    if (px < 0 || py < 0 || px >= scene.width || py >= scene.height)
+        throw Error("ray profile: pixel (" + std::to_string(px) + ", " + std::to_string(py) + ") is outside the " +
+                    std::to_string(scene.width) + "x" + std::to_string(scene.height) + " image");
+    const Renderer& renderer = rendererRegistry().get(scene.renderer);
+    const ParameterValues values = renderer.resolveParameters(scene.parameters, volume.valueRange());
+    auto param = [&](const char* name) { return values.at(name); };
+
+    RayProfile profile;
+    profile.px = px, profile.py = py;
+    profile.renderer = renderer.id();
+    profile.stepUnits = scene.step;
+    profile.step = scene.step * volume.minSpacing();
+    const bool modelled = modelledRenderer(profile.renderer);
+
+    // The ray through the pixel's centre.
+    const Camera cam = Camera::make(scene.camera, volume.extent(), scene.width, scene.height);
+    cam.ray(px + 0.5, py + 0.5, &profile.origin, &profile.direction);
+    const glm::dvec3 origin = profile.origin, dir = profile.direction;
+
+    // The sampled region: the box cropped by the roi (an roi that misses the
+    // box leaves nothing), then the renderer's own clipping.
+    glm::dvec3 lo(0.0), hi = volume.extent();
+    bool empty = false;
+    if (scene.roi) {
+        lo = glm::max(lo, scene.roi->min * volume.spacing());
+        hi = glm::min(hi, scene.roi->max * volume.spacing());
+        empty = lo.x >= hi.x || lo.y >= hi.y || lo.z >= hi.z;
+    }
+    double t0 = 0.0, t1 = 0.0;
+    bool hits = !empty && clipToBox(origin, dir, lo, hi, &t0, &t1);
+    if (hits && scene.cuttingPlane) {
+        const CuttingPlane& cut = *scene.cuttingPlane;
+        const glm::dvec3 point = cut.point.value_or(glm::dvec3(volume.dims()) * 0.5) * volume.spacing();
+        hits = clipToHalfSpace(origin, dir, point, glm::normalize(cut.normal), &t0, &t1);
+        if (cut.otherRenderer != "none")
+            addNote(profile, "cutting plane: only " + profile.renderer + "'s half-space is followed, not " +
+                                 cut.otherRenderer + "'s");
+    }
+    if (hits && profile.renderer == "slab_mip") {
+        // The slab: |dot(p - c, forward)| <= thickness/2 around the box centre
+        // moved by `offset` along the view (both in smallest spacings).
+        const glm::dvec3 n = cam.forward;
+        const glm::dvec3 centre = 0.5 * volume.extent() + param("offset") * volume.minSpacing() * n;
+        const double h = 0.5 * param("thickness") * volume.minSpacing();
+        hits = clipToHalfSpace(origin, dir, centre - h * n, n, &t0, &t1) &&
+               clipToHalfSpace(origin, dir, centre + h * n, -n, &t0, &t1);
+    }
+    profile.hitsVolume = hits;
+    if (!hits) {
+        profile.why = "the ray misses the volume";
+        profile.modelled = modelled;
+        return profile;
+    }
+    if (profile.renderer == "composite" && param("jitter") != 0.0)
+        t0 += (pixelRandom(px, py, scene.height) - 0.5) * profile.step;  // the same start as the GPU's
+    profile.tEntry = t0, profile.tExit = t1;
+
+    // The samples: floor(length / step + 1/2) of them, at t_entry + (m + 1/2) step.
+    const VolumeReader reader(volume, scene.interpolation);
+    if (scene.interpolation == Interpolation::Hardware)
+        addNote(profile, "hardware interpolation read as trilinear (the GPU may blend with 8-bit weights)");
+    const int count = std::max(0, int(std::floor((t1 - t0) / profile.step + 0.5)));
+    profile.samples.resize(count);
+    double maximum = -std::numeric_limits<double>::infinity(), minimum = -maximum, sum = 0.0;
+    for (int m = 0; m < count; ++m) {
+        RaySample& s = profile.samples[m];
+        s.t = t0 + (m + 0.5) * profile.step;
+        s.position = origin + s.t * dir;
+        s.value = reader.sample(s.position);
+        maximum = std::max(maximum, s.value), minimum = std::min(minimum, s.value), sum += s.value;
+        s.runningMax = maximum, s.runningMin = minimum, s.runningMean = sum / (m + 1);
+    }
+
+    if (!modelled) {
+        profile.why = "not modelled for " + profile.renderer;
+        return profile;
+    }
+    profile.modelled = true;
+
+    const glm::dvec2 window = scene.window.value_or(volume.valueRange());
+    const glm::dvec2 range = volume.valueRange();
+    // The transfer function the renderer classifies with: the scene's, or
+    // for compositing without one the engine's fallback, a white ramp over
+    // the window from opacity 0 to 0.1 per unit length (render_engine.h).
+    std::optional<TransferFunction> tf = scene.transferFunction;
+    if (!tf && renderer.needsTransferFunction())
+        tf = TransferFunction({{window.x, glm::vec3(1.0f), 0.0f}, {window.y, glm::vec3(1.0f), 0.1f}});
+    const TransferFunction* tfp = tf ? &*tf : nullptr;
+    const Lighting lighting(values, cam, range.y - range.x);
+    const auto gradientParam = [&](const char* name) {
+        const auto it = values.find(name);
+        return it != values.end() && it->second != 0.0;
+    };
+    const GradientReader gradients(reader, gradientParam("sobel"), gradientParam("precomputed_gradients"));
+    const auto freeze = [&](int from, const glm::vec4& acc) {
+        for (int k = from; k < count; ++k) profile.samples[k].accumulated = acc;
+    };
+
+    if (profile.renderer == "composite") {
+        profile.composites = true;
+        const bool preclassify = param("preclassify") != 0.0, backToFront = param("back_to_front") != 0.0;
+        profile.earlyTermination = backToFront ? 1.0 : param("early_termination");
+        auto classifyVoxel = [&](glm::ivec3 ijk) { return glm::dvec4(tf->evaluate(reader.voxel(ijk))); };
+        // Pre-classification: the 8 voxels around p classified, their
+        // opacity-weighted colours blended (nearest: the one voxel).
+        auto classifyPre = [&](const glm::dvec3& p) {
+            if (scene.interpolation == Interpolation::Nearest)
+                return classifyVoxel(glm::ivec3(glm::floor(reader.voxelCoordinates(p))));
+            const glm::dvec3 u = reader.voxelCoordinates(p) - 0.5;
+            const glm::dvec3 lower = glm::floor(u), w = u - lower;
+            glm::dvec4 acc(0.0);
+            for (int corner = 0; corner < 8; ++corner) {
+                const glm::ivec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+                const double weight = (o.x ? w.x : 1.0 - w.x) * (o.y ? w.y : 1.0 - w.y) * (o.z ? w.z : 1.0 - w.z);
+                acc += weight * premultiply(classifyVoxel(glm::ivec3(lower) + o));
+            }
+            return acc.a > 0.0 ? glm::dvec4(glm::dvec3(acc) / acc.a, acc.a) : glm::dvec4(0.0);
+        };
+        glm::dvec3 colour(0.0);
+        double opacity = 0.0;
+        for (int m = 0; m < count; ++m) {
+            RaySample& s = profile.samples[m];
+            glm::dvec4 c = preclassify ? classifyPre(s.position) : glm::dvec4(tf->evaluate(s.value));
+            if (c.a > 0.0 && lighting.on)
+                c = glm::dvec4(lighting.shade(glm::dvec3(c), gradients.at(s.position), dir), c.a);
+            // Opacity per unit length, corrected for a step of stepUnits units.
+            const double a = 1.0 - std::pow(1.0 - std::clamp(c.a, 0.0, 1.0), scene.step);
+            s.classified = glm::vec4(glm::vec3(c), float(a));
+            if (profile.stoppedAt >= 0) continue;  // past the stop: classified, not composited
+            colour += (1.0 - opacity) * a * glm::dvec3(c);
+            opacity += (1.0 - opacity) * a;
+            s.accumulated = glm::vec4(glm::vec3(colour), float(opacity));
+            if (!backToFront && opacity >= profile.earlyTermination) {
+                profile.stoppedAt = m;
+                profile.why = format("early ray termination: accumulated opacity %.3f >= %g", opacity,
+                                     profile.earlyTermination);
+                freeze(m + 1, s.accumulated);
+            }
+        }
+        profile.result = glm::vec4(glm::vec3(colour), float(opacity));
+        if (profile.stoppedAt < 0)
+            profile.why = backToFront ? "the ray left the volume (back to front: no early termination)"
+                                      : "the ray left the volume";
+        if (lighting.on && gradientParam("precomputed_gradients"))
+            addNote(profile, "precomputed gradients blended in double (the GPU filters a float texture)");
+        return profile;
+    }
+
+    // The projection renderers: each sample alone, and the running result,
+    // shown the way the pixel would show it.
+    const bool isProjection = profile.renderer != "iso";
+    if (isProjection)
+        for (RaySample& s : profile.samples) s.classified = glm::vec4(displayColour(s.value, window, tfp));
+    auto shown = [&](double value) { return glm::vec4(premultiply(displayColour(value, window, tfp))); };
+
+    if (profile.renderer == "mip" || profile.renderer == "slab_mip" || profile.renderer == "minip" ||
+        profile.renderer == "average") {
+        const bool isMin = profile.renderer == "minip", isMean = profile.renderer == "average";
+        for (int m = 0; m < count; ++m) {
+            RaySample& s = profile.samples[m];
+            s.accumulated = shown(isMean ? s.runningMean : isMin ? s.runningMin : s.runningMax);
+            const double extreme = isMin ? s.runningMin : s.runningMax;
+            const bool newExtreme = profile.chosen < 0 || extreme != profile.samples[profile.chosen].value;
+            if (!isMean && s.value == extreme && newExtreme) profile.chosen = m;  // the first to reach the extreme
+        }
+        if (count == 0) {
+            profile.why = "the ray crosses less than half a step of the volume: no sample";
+            return profile;
+        }
+        profile.result = profile.samples.back().accumulated;
+        profile.why = "the ray left the volume";
+        return profile;
+    }
+
+    const bool depth = param("depth") != 0.0;
+    if (profile.renderer == "firsthit") {
+        profile.threshold = param("threshold"), profile.hasThreshold = true;
+        for (int m = 0; m < count && profile.stoppedAt < 0; ++m) {
+            const RaySample& s = profile.samples[m];
+            if (s.value < profile.threshold) continue;
+            profile.stoppedAt = profile.chosen = m;
+            profile.hitT = s.t;
+            profile.why = format("first hit: value %g >= threshold %g", s.value, profile.threshold);
+            const double grey = depthGrey(origin, dir, volume.extent(), s.t);
+            profile.result = depth ? glm::vec4(glm::vec3(float(grey)), 1.0f) : shown(s.value);
+            freeze(m, profile.result);
+        }
+        if (profile.stoppedAt < 0)
+            profile.why = format("the ray left the volume (no sample reached threshold %g)", profile.threshold);
+        return profile;
+    }
+
+    // iso: value - isovalue changes sign between two samples (a value equal
+    // to the isovalue counts as above); bisection narrows the interval.
+    profile.threshold = param("isovalue"), profile.hasThreshold = true;
+    const double iso = profile.threshold;
+    const int refinements = int(param("refinement_steps"));
+    for (int m = 0; m < count && profile.stoppedAt < 0; ++m) {
+        const RaySample& s = profile.samples[m];
+        const bool above = s.value - iso >= 0.0;
+        if (m == 0 && above) {
+            profile.hitT = s.t;
+            profile.why =
+                format("the ray starts inside the surface: sample 0 has value %g >= isovalue %g", s.value, iso);
+        } else if (m > 0 && (profile.samples[m - 1].value - iso >= 0.0) != above) {
+            double tLo = profile.samples[m - 1].t, tHi = s.t;
+            bool loAbove = !above;
+            for (int k = 0; k < refinements; ++k) {
+                const double mid = 0.5 * (tLo + tHi);
+                const bool midAbove = reader.sample(origin + mid * dir) - iso >= 0.0;
+                if (midAbove == loAbove) tLo = mid;
+                else tHi = mid;
+            }
+            profile.hitT = refinements > 0 ? 0.5 * (tLo + tHi) : s.t;
+            profile.why = "isovalue crossed between samples " + std::to_string(m - 1) + " and " + std::to_string(m);
+        } else {
+            continue;
+        }
+        profile.stoppedAt = profile.chosen = m;
+        const glm::dvec3 hit = origin + profile.hitT * dir;
+        glm::dvec3 colour(param("color_r"), param("color_g"), param("color_b"));
+        if (depth) colour = glm::dvec3(depthGrey(origin, dir, volume.extent(), profile.hitT));
+        else if (lighting.on) colour = lighting.shade(colour, gradients.at(hit), dir);
+        profile.result = glm::vec4(glm::vec3(colour), 1.0f);
+        freeze(m, profile.result);
+    }
+    if (profile.stoppedAt < 0)
+        profile.why = format("the ray left the volume (the isovalue %g is never crossed)", iso);
+    return profile;
+}
+
+}  // namespace voxlab

@@ -1,0 +1,182 @@
+// voxlab viewer: rendering both sides of the view at the right quality, and
+// putting the images on the screen.
+//
+// While the mouse drags (and for a moment after the wheel turns) the
+// renderers run at half the window's resolution and twice the step, which
+// keeps the frame rate up on a software rasteriser; once input stops, one
+// full-quality frame replaces it.
+#include "voxlab_gl.h"
+
+#include <ctime>
+#include <filesystem>
+
+#include "viewer_state.h"
+#include "voxlab/error.h"
+#include "voxlab/shader.h"
+
+namespace voxlab::viewer {
+
+namespace {
+
+constexpr auto kSettle = std::chrono::milliseconds(250);  // idle time before full quality
+
+bool isSceneFile(const std::string& path) {
+    return path.size() > 5 && path.substr(path.size() - 5) == ".json";
+}
+
+// The scene one side renders: the shared scene with that side's renderer.
+Scene sideScene(const State& s, const Side& side, int width, int height, bool reduced) {
+    Scene scene = s.scene;
+    if (!side.renderer.empty() && side.renderer != scene.renderer) {
+        scene.renderer = side.renderer;
+        scene.parameters.clear();
+    }
+    scene.width = width;
+    scene.height = height;
+    if (reduced) scene.step = std::min(kMaxStep, scene.step * 2.0);
+    return scene;
+}
+
+void renderSide(Side& side, const Scene& scene) {
+    try {
+        side.engine->renderOffscreen(scene);
+        side.error.clear();
+    } catch (const Error& e) {
+        side.error = e.what();  // the last good image stays
+    }
+}
+
+}  // namespace
+
+void setImplementation(Side& side, const std::string& root, const Volume& volume) {
+    auto engine = std::make_unique<RenderEngine>(root);  // throws for a folder that does not exist
+    engine->setVolume(volume);
+    side.engine = std::move(engine);
+    side.implementation = root;
+    side.error.clear();
+}
+
+void loadDataset(State& s, const std::string& path) {
+    Scene scene = s.scene;
+    std::string scenePath = s.scenePath;
+    if (isSceneFile(path)) {
+        scene = Scene::load(path);
+        scenePath = path;
+    } else {
+        scene.dataset = resolveDataPath(path);
+        scene.window.reset();  // the old dataset's window and colours mean nothing here
+        scene.transferFunction.reset();
+        scene.transferFunction2D.reset();
+        scene.roi.reset();
+        scene.cuttingPlane.reset();
+    }
+    auto volume = std::make_unique<Volume>(loadVolume(scene.dataset));
+    s.main.engine->setVolume(*volume);
+    if (s.other.engine) s.other.engine->setVolume(*volume);
+    s.volume = std::move(volume);
+    s.scene = scene;
+    s.scenePath = scenePath;
+    s.histogram.reset();
+    s.histogram2D.reset();
+    s.profile.reset();
+    s.slices = initialSliceCursor(*s.volume);
+    if (s.sliceViewer) s.sliceViewer->invalidate();
+    s.history = TransferFunctionHistory();
+    s.dirty = true;
+}
+
+void renderFrame(State& s) {
+    const bool busy = s.dragging || s.panning || Clock::now() - s.lastInput < kSettle;
+    // Nothing new to show: unless the last images are reduced and the
+    // mouse has settled, keep them.
+    if (!s.dirty && !(s.interactive && !busy)) return;
+    if (s.fbWidth <= 0 || s.fbHeight <= 0) return;
+    const bool reduced = busy && s.dirty;
+    const int w = reduced ? std::max(1, s.fbWidth / 2) : s.fbWidth;
+    const int h = reduced ? std::max(1, s.fbHeight / 2) : s.fbHeight;
+    if (s.main.engine && s.watcher.changed(s.main.engine->shaderSources())) {
+        s.main.engine->reloadShaders();
+        if (s.other.engine) s.other.engine->reloadShaders();
+    }
+    const auto t0 = Clock::now();
+    renderSide(s.main, sideScene(s, s.main, w, h, reduced));
+    if (s.split != SplitMode::Off) {
+        if (!s.other.engine) setImplementation(s.other, "", *s.volume);
+        renderSide(s.other, sideScene(s, s.other, w, h, reduced));
+    }
+    glFinish();
+    s.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    s.imageWidth = w, s.imageHeight = h;
+    s.interactive = reduced;
+    s.dirty = false;
+}
+
+void presentFrame(State& s) {
+    if (!s.presenter) {
+        const ShaderLibrary library({projectRoot() + "/shaders"});
+        s.presenter = std::make_unique<ShaderProgram>(library, "voxlab/fullscreen.vert", "viewer/split_view.frag");
+        glGenVertexArrays(1, &s.presenterVao);
+    }
+    const ShaderProgram* program = s.presenter.get();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, s.fbWidth, s.fbHeight);
+    glDisable(GL_BLEND);
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    if (!s.main.engine || !s.main.engine->offscreenTexture()) return;
+    const bool split = s.split != SplitMode::Off && s.other.engine && s.other.engine->offscreenTexture();
+    const unsigned textures[2] = {s.main.engine->offscreenTexture(),
+                                  split ? s.other.engine->offscreenTexture() : s.main.engine->offscreenTexture()};
+    for (int i = 0; i < 2; ++i) {
+        glActiveTexture(GL_TEXTURE0 + i);
+        glBindTexture(GL_TEXTURE_2D, textures[i]);
+        // Reduced images are filtered up to the window.
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, s.interactive ? GL_LINEAR : GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, s.interactive ? GL_LINEAR : GL_NEAREST);
+    }
+    program->use();
+    program->set("u_left", 0);
+    program->set("u_right", 1);
+    program->set("u_viewport_size", glm::vec2(s.fbWidth, s.fbHeight));
+    program->set("u_divider", s.divider * float(s.fbWidth));
+    program->set("u_mode", !split ? 0 : s.split == SplitMode::Split ? 1 : 2);
+    glBindVertexArray(s.presenterVao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glActiveTexture(GL_TEXTURE0);
+}
+
+void pickRayProfile(State& s, glm::ivec2 pixel) {
+    if (pixel.x < 0 || pixel.y < 0 || pixel.x >= s.fbWidth || pixel.y >= s.fbHeight) return;
+    Scene scene = s.scene;
+    scene.width = s.fbWidth, scene.height = s.fbHeight;
+    const bool right = s.split == SplitMode::Split && pixel.x >= s.divider * s.fbWidth;
+    if (right && !s.other.renderer.empty()) scene.renderer = s.other.renderer, scene.parameters.clear();
+    s.profile = computeRayProfile(*s.volume, scene, pixel.x, pixel.y);
+    s.showProfile = true;
+}
+
+void saveWindowScreenshot(int width, int height, const std::string& path) {
+    Image img(width, height);
+    std::vector<unsigned char> rows(std::size_t(width) * height * 4);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const unsigned char* p = &rows[(std::size_t(height - 1 - y) * width + x) * 4];
+            img.set(x, y, glm::vec4(p[0], p[1], p[2], 255) / 255.0f);
+        }
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent);
+    savePng(img, path);
+}
+
+std::string timestampedScreenshotName() {
+    const std::time_t now = std::time(nullptr);
+    char buf[64];
+    std::strftime(buf, sizeof buf, "voxlab_%Y%m%d_%H%M%S.png", std::localtime(&now));
+    return buf;
+}
+
+}  // namespace voxlab::viewer

@@ -1,0 +1,92 @@
+// voxlab viewer: executing viewer scripts (see viewer_script_runner.h).
+#define GLFW_INCLUDE_NONE
+#include "viewer_script_runner.h"
+
+#include <GLFW/glfw3.h>
+
+#include "voxlab/camera_controller.h"
+#include "voxlab/error.h"
+#include "voxlab/transfer_function.h"
+
+namespace voxlab::viewer {
+
+ScriptRunner::ScriptRunner(const std::string& path) : steps_(parseViewerScript(path)) {}
+
+ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
+    // A frame is rendered between steps; `wait N` adds N more, and every
+    // step waits for a full-quality image first.
+    if (waitFrames_ > 0) {
+        --waitFrames_;
+        return Continue;
+    }
+    if (s.dirty) return Continue;
+    if (next_ >= steps_.size()) return Done;
+    const ViewerStep& st = steps_[next_++];
+    const std::string& c = st.command;
+    try {
+        if (c == "load" || c == "scene") {
+            loadDataset(s, dataPath(st, 0));
+        } else if (c == "renderer") {
+            rendererRegistry().get(word(st, 0));  // throws for an unknown id
+            s.scene.renderer = word(st, 0);
+            s.scene.parameters.clear();
+        } else if (c == "param") {
+            s.scene.parameters[word(st, 0)] = number(st, 1);
+            rendererRegistry().get(s.scene.renderer).resolveParameters(s.scene.parameters);
+        } else if (c == "step") {
+            s.scene.step = number(st, 0);
+        } else if (c == "interpolation") {
+            s.scene.interpolation = parseInterpolation(word(st, 0));
+        } else if (c == "tf") {
+            if (word(st, 0) == "none") s.scene.transferFunction.reset();
+            else s.scene.transferFunction = TransferFunction::load(dataPath(st, 0));
+        } else if (c == "camera") {
+            applyCameraStep(st, &s.scene.camera);
+        } else if (c == "rotate") {
+            rotateCamera(&s.scene.camera, number(st, 0), number(st, 1));
+        } else if (c == "window") {
+            s.scene.window = glm::dvec2(number(st, 0), number(st, 1));
+        } else if (c == "split") {
+            const std::string& m = word(st, 0);
+            s.split = m == "on" ? SplitMode::Split : m == "difference" ? SplitMode::Difference : SplitMode::Off;
+        } else if (c == "divider") {
+            s.divider = float(number(st, 0));
+        } else if (c == "implementation") {
+            const std::string& which = word(st, 0);
+            setImplementation(s.main, which == "reference" ? "" : which == "student" ? s.studentRoot : which,
+                              *s.volume);
+        } else if (c == "right") {
+            s.other.renderer = word(st, 0) == "same" ? "" : word(st, 0);
+        } else if (c == "panel") {
+            const std::string& p = word(st, 0);
+            const bool on = onOff(st, 1);
+            if (p == "slices") s.showSlices = on;
+            else if (p == "tf" || p == "tf2d") s.showTransferFunction = on;
+            else if (p == "profile") s.showProfile = on;
+            else if (p == "help") s.showHelp = on;
+            else if (p == "controls") s.showPanel = on;
+            else failStep(st, "unknown panel '" + p + "' (slices, tf, tf2d, profile, help, controls)");
+        } else if (c == "click") {
+            pickRayProfile(s, glm::ivec2(integer(st, 0), integer(st, 1)));
+        } else if (c == "size") {
+            glfwSetWindowSize(window, integer(st, 0), integer(st, 1));
+            waitFrames_ = 2;
+        } else if (c == "wait") {
+            waitFrames_ = integer(st, 0);
+        } else if (c == "screenshot") {
+            s.screenshotRequest = word(st, 0);
+        } else if (c == "quit") {
+            return Done;
+        } else {
+            failStep(st, "this viewer cannot run '" + c + "'");
+        }
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        if (what.rfind(stepLocation(st), 0) == 0) throw;  // already names the line
+        failStep(st, what);
+    }
+    s.dirty = true;
+    return Continue;
+}
+
+}  // namespace voxlab::viewer

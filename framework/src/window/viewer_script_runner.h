@@ -1,0 +1,29 @@
+// voxlab viewer: running a viewer script (voxlab/viewer_script.h), one step
+// per frame, so that CI and the README's screenshots drive the real window.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "viewer_state.h"
+#include "voxlab/viewer_script.h"
+
+struct GLFWwindow;
+
+namespace voxlab::viewer {
+
+class ScriptRunner {
+public:
+    enum Progress { Continue, Done };
+    explicit ScriptRunner(const std::string& path);  // parses it all first: errors before any window work
+    // Applies the next step (or keeps waiting). Throws voxlab::Error naming
+    // the script's file and line when a step fails.
+    Progress step(State& s, GLFWwindow* window);
+
+private:
+    std::vector<ViewerStep> steps_;
+    std::size_t next_ = 0;
+    int waitFrames_ = 0;
+};
+
+}  // namespace voxlab::viewer

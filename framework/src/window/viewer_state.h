@@ -1,0 +1,113 @@
+// voxlab viewer internals: what the window shows and how it got there.
+// The viewer is split by concern: viewer.cpp (the frame loop and input),
+// viewer_render.cpp (rendering both sides at interactive or full quality,
+// the split view), viewer_panels.cpp (the ImGui panels and overlays),
+// viewer_script_runner.cpp (scripted steps), shader_watcher.cpp (live reload).
+#pragma once
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "voxlab/gradients.h"
+#include "voxlab/ray_profile.h"
+#include "voxlab/render_engine.h"
+#include "voxlab/scene.h"
+#include "voxlab/shader.h"
+#include "voxlab/slice_viewer.h"
+#include "voxlab/transfer_function_editor.h"
+#include "voxlab/volume.h"
+
+struct GLFWwindow;
+
+namespace voxlab::viewer {
+
+using Clock = std::chrono::steady_clock;
+
+// Notices edits of shader files (by modification time, twice a second).
+class ShaderWatcher {
+public:
+    // True when a file in `files` changed since the last call that saw it.
+    bool changed(const std::vector<std::string>& files);
+
+private:
+    std::map<std::string, long long> stamps_;
+    Clock::time_point lastCheck_{};
+};
+
+enum class SplitMode { Off, Split, Difference };
+
+// One side of the view: an implementation and the engine that renders it.
+struct Side {
+    std::string implementation;  // a folder; empty: the reference
+    std::string renderer;        // empty: the scene's
+    std::unique_ptr<RenderEngine> engine;
+    std::string error;           // this side's last render error
+};
+
+struct State {
+    Scene scene;
+    std::string scenePath;          // where "save scene" writes
+    std::unique_ptr<Volume> volume;
+    Side main, other;               // `other` is the right side of a split view
+    std::string studentRoot;        // the implementation switch's "student" folder
+    SplitMode split = SplitMode::Off;
+    float divider = 0.5f;           // fraction of the window's width
+
+    // Rendering.
+    bool dirty = true;              // the scene changed: render again
+    bool interactive = false;       // the last images are reduced (mouse busy)
+    Clock::time_point lastInput{};
+    double renderMs = 0.0, frameMs = 0.0;
+    int fbWidth = 0, fbHeight = 0;  // framebuffer pixels
+    float contentScale = 1.0f;      // high-DPI scale of the window
+    int imageWidth = 0, imageHeight = 0;  // size of the images last rendered
+
+    // Mouse.
+    bool dragging = false, panning = false, draggingDivider = false;
+    double pressX = 0, pressY = 0, lastX = 0, lastY = 0;
+    bool moved = false;
+
+    // Panels.
+    bool showPanel = true, showTransferFunction = true, showSlices = false, showProfile = false, showHelp = false;
+    int selectedPoint = -1, selectedWidget = -1;
+    TransferFunctionHistory history;
+    std::optional<Histogram> histogram;
+    std::optional<Histogram2D> histogram2D;
+    std::string tfPath, tfMessage;
+    SliceCursor slices;
+    std::unique_ptr<SliceViewer> sliceViewer;
+    std::optional<RayProfile> profile;
+    ShaderWatcher watcher;
+    std::unique_ptr<ShaderProgram> presenter;  // shaders/viewer/split_view.frag
+    unsigned presenterVao = 0;
+
+    // Messages: a load error or "saved screenshot" for a few seconds.
+    std::string toast;
+    Clock::time_point toastUntil{};
+    std::vector<std::string> dropped;  // files dropped on the window, loaded next frame
+    std::string screenshotRequest;     // a path: save the window after this frame
+
+    void say(const std::string& message, double seconds = 4.0) {
+        toast = message;
+        toastUntil = Clock::now() + std::chrono::milliseconds(int(seconds * 1000));
+    }
+};
+
+// viewer_render.cpp
+void loadDataset(State& s, const std::string& pathOrScene);  // throws voxlab::Error; the state is unchanged then
+void setImplementation(Side& side, const std::string& root, const Volume& volume);
+void renderFrame(State& s);          // renders what is dirty, at the right quality
+void presentFrame(State& s);         // draws the images into the window
+void saveWindowScreenshot(int width, int height, const std::string& path);
+void pickRayProfile(State& s, glm::ivec2 pixel);  // framebuffer pixel; opens the ray-profile panel
+std::string timestampedScreenshotName();
+
+// viewer_panels.cpp
+void drawPanels(State& s);
+void drawOverlays(State& s);
+
+}  // namespace voxlab::viewer

@@ -1,0 +1,39 @@
+#version 330 core
+// voxlab viewer: puts the rendered images on the screen.
+//   u_mode 0  one image (the left), scaled to the window (a reduced-size
+//             image while the mouse drags is filtered up);
+//   u_mode 1  split view: the left image left of the divider, the right
+//             image right of it;
+//   u_mode 2  difference: a heat map of the largest per-channel |left - right|,
+//             amplified four times (black: equal; purple, orange, yellow: more).
+uniform sampler2D u_left;
+uniform sampler2D u_right;
+uniform vec2 u_viewport_size;  // framebuffer pixels
+uniform float u_divider;       // framebuffer x of the divider
+uniform int u_mode;
+
+out vec4 frag_color;
+
+vec3 heat(float t) {
+    t = clamp(t, 0.0, 1.0);
+    vec3 c0 = vec3(0.0), c1 = vec3(0.35, 0.05, 0.55), c2 = vec3(0.95, 0.35, 0.15), c3 = vec3(1.0, 0.95, 0.55);
+    if (t < 1.0 / 3.0) return mix(c0, c1, 3.0 * t);
+    if (t < 2.0 / 3.0) return mix(c1, c2, 3.0 * t - 1.0);
+    return mix(c2, c3, 3.0 * t - 2.0);
+}
+
+void main() {
+    vec2 uv = gl_FragCoord.xy / u_viewport_size;
+    vec3 left = clamp(texture(u_left, uv).rgb, 0.0, 1.0);
+    if (u_mode == 0) {
+        frag_color = vec4(left, 1.0);
+        return;
+    }
+    vec3 right = clamp(texture(u_right, uv).rgb, 0.0, 1.0);
+    if (u_mode == 1) {
+        frag_color = vec4(gl_FragCoord.x < u_divider ? left : right, 1.0);
+        return;
+    }
+    vec3 d = abs(left - right);
+    frag_color = vec4(heat(4.0 * max(d.r, max(d.g, d.b))), 1.0);
+}

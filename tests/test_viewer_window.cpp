@@ -1,0 +1,144 @@
+// The viewer as a user drives it: a viewer script (voxlab view --script)
+// run in a real window under Xvfb loads a dataset, switches technique,
+// opens the split view with the student's starter code against the
+// reference, the difference heat map, the slice and ray-profile panels, and
+// saves screenshots, which are then checked: the expected size, not blank,
+// the panels present, the student side showing its "not implemented"
+// checkerboard and the reference side not.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "support/run_command.h"
+#include "voxlab/image.h"
+
+namespace voxlab::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Region {
+    int x0, y0, x1, y1;
+};
+
+// Mean and spread of the grey level over a region.
+struct Stats {
+    double mean = 0, spread = 0, magenta = 0;  // magenta: share of the stub's magenta pixels
+};
+
+Stats stats(const Image& img, Region r) {
+    double sum = 0, sum2 = 0, magenta = 0;
+    int n = 0;
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x) {
+            const glm::vec4 c = img.at(x, y);
+            const double g = (c.r + c.g + c.b) / 3.0;
+            sum += g, sum2 += g * g, ++n;
+            if (c.r > 0.8f && c.b > 0.8f && c.g < 0.2f) magenta += 1;
+        }
+    Stats s;
+    s.mean = sum / n;
+    s.spread = std::sqrt(std::max(0.0, sum2 / n - s.mean * s.mean));
+    s.magenta = magenta / n;
+    return s;
+}
+
+double meanDifference(const Image& a, const Image& b, Region r) {
+    double sum = 0;
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x) {
+            const glm::vec4 d = glm::abs(a.at(x, y) - b.at(x, y));
+            sum += (d.r + d.g + d.b) / 3.0;
+        }
+    return sum / (double(r.x1 - r.x0) * (r.y1 - r.y0));
+}
+
+class ViewerWindow : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (runShell("which xvfb-run").exitCode != 0) GTEST_SKIP() << "xvfb-run is not installed";
+        dir_ = fs::path(::testing::TempDir()) /
+               ("voxlab_viewer_" + std::to_string(getpid()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    CommandResult play(const std::string& script) {
+        std::ofstream(path("script.vs")) << script;
+        return runShell("xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(VOXLAB_BINARY) +
+                            " view --script " + path("script.vs") + " --window-size 640x400 --student " +
+                            std::string(VOXLAB_SOURCE_DIR) + "/assignments",
+                        240);
+    }
+    fs::path dir_;
+};
+
+TEST_F(ViewerWindow, AScriptedSessionShowsEveryPart) {
+    const CommandResult r = play("load tooth.nrrd\n"
+                                 "renderer mip\n"
+                                 "panel tf off\n"
+                                 "wait 2\n"
+                                 "screenshot " + path("mip.png") + "\n"
+                                 "split on\n"
+                                 "implementation student\n"
+                                 "panel controls off\n"
+                                 "wait 2\n"
+                                 "screenshot " + path("split.png") + "\n"
+                                 "split difference\n"
+                                 "wait 1\n"
+                                 "screenshot " + path("difference.png") + "\n"
+                                 "split off\n"
+                                 "implementation reference\n"
+                                 "panel controls on\n"
+                                 "panel slices on\n"
+                                 "panel profile on\n"
+                                 "click 420 200\n"
+                                 "wait 2\n"
+                                 "screenshot " + path("panels.png") + "\n"
+                                 "quit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    for (const char* name : {"mip.png", "split.png", "difference.png", "panels.png"}) {
+        ASSERT_TRUE(fs::exists(path(name))) << name << "\n" << r.out << r.err;
+        const Image img = loadPng(path(name));
+        EXPECT_EQ(img.width, 640) << name;
+        EXPECT_EQ(img.height, 400) << name;
+    }
+    // The MIP: a bright tooth in the middle, and the control panel (text on
+    // a panel background) at the top left.
+    const Image mip = loadPng(path("mip.png"));
+    EXPECT_GT(stats(mip, {400, 120, 520, 280}).mean, 0.15) << "no volume in the middle";
+    EXPECT_GT(stats(mip, {15, 15, 300, 120}).spread, 0.05) << "no panel at the top left";
+    // The split: the student's stub shows the magenta checkerboard on the
+    // left, the reference on the right does not.
+    const Image split = loadPng(path("split.png"));
+    EXPECT_GT(stats(split, {200, 150, 310, 250}).magenta, 0.2) << "the student side is not the stub";
+    EXPECT_LT(stats(split, {330, 150, 440, 250}).magenta, 0.01) << "the reference side shows the stub";
+    // The difference between stub and reference is large across the volume.
+    EXPECT_GT(stats(loadPng(path("difference.png")), {250, 150, 390, 250}).mean, 0.3);
+    // The slice and ray-profile panels open on the right half, over what
+    // was the plain view, and the profile's plot has structure.
+    const Image panels = loadPng(path("panels.png"));
+    EXPECT_GT(meanDifference(panels, mip, {400, 0, 640, 400}), 0.08);
+    EXPECT_GT(stats(panels, {400, 100, 620, 240}).spread, 0.05);
+}
+
+TEST_F(ViewerWindow, ABadScriptOrDatasetIsAOneLineError) {
+    std::ofstream(path("bad.vs")) << "renderer mip\nrotat 10 20\n";
+    const CommandResult bad = runShell("xvfb-run -a " + std::string(VOXLAB_BINARY) + " view --script " +
+                                       path("bad.vs"), 120);
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.err.find("bad.vs:2: unknown command 'rotat'"), std::string::npos) << bad.err;
+    // A missing dataset in a script stops it with the script's line.
+    const CommandResult missing = play("load no_such_volume.nrrd\nquit\n");
+    EXPECT_NE(missing.exitCode, 0);
+    EXPECT_NE(missing.err.find("script.vs:1"), std::string::npos) << missing.err;
+    EXPECT_NE(missing.err.find("no_such_volume.nrrd"), std::string::npos) << missing.err;
+}
+
+}  // namespace
+}  // namespace voxlab::testing

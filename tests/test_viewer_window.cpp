@@ -95,6 +95,7 @@ TEST_F(ViewerWindow, AScriptedSessionShowsEveryPart) {
                                  "split off\n"
                                  "implementation reference\n"
                                  "panel controls on\n"
+                                 "drag 5 0 4\n"
                                  "panel slices on\n"
                                  "panel profile on\n"
                                  "click 420 200\n"
@@ -102,6 +103,9 @@ TEST_F(ViewerWindow, AScriptedSessionShowsEveryPart) {
                                  "screenshot " + path("panels.png") + "\n"
                                  "quit\n");
     ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    // Dragging renders reduced images, then one at full quality (640x400).
+    EXPECT_NE(r.out.find("drag: 4 frames"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("idle, full quality 640x400"), std::string::npos) << r.out;
     for (const char* name : {"mip.png", "split.png", "difference.png", "panels.png"}) {
         ASSERT_TRUE(fs::exists(path(name))) << name << "\n" << r.out << r.err;
         const Image img = loadPng(path(name));

@@ -16,6 +16,10 @@
 //                                  fov F, zoom Z, pan X Y, view +x|-x|+y|-y|+z|-z,
 //                                  projection perspective|orthographic
 //   rotate AZIMUTH ELEVATION       orbit by degrees
+//   drag DX DY FRAMES              orbit with the mouse for FRAMES frames, (DX, DY) pixels each,
+//                                  as a person would (reduced quality), then let it settle;
+//                                  prints the median render time while dragging and the
+//                                  full-quality render time after
 //   window LO HI                   grey window in data units, HI > LO
 //   split on|off|difference        student | reference side by side, or the heat map
 //   divider X                      the split's divider at X (0..1) of the window's width

@@ -123,6 +123,13 @@ public:
             if (!isOneOf(arg(0), {"nearest", "trilinear", "hardware"})) fail(msg, 0);
             return;
         }
+        if (c == "drag") {
+            const char* msg = "expected DX DY (pixels per frame) and a number of frames > 0";
+            exactly(3, msg);
+            numberAt(0, msg), numberAt(1, msg);
+            if (integerAt(2, msg) <= 0) fail(msg, 2);
+            return;
+        }
         if (c == "rotate" || c == "click") {
             const char* msg = "expected 2 numbers";
             exactly(2, msg);
@@ -218,7 +225,7 @@ private:
 
 constexpr const char* kCommands[] = {
     "load", "scene", "renderer", "param", "step", "interpolation", "tf", "camera", "rotate",
-    "window", "split", "divider", "right", "implementation", "panel", "click", "size", "wait", "screenshot", "quit"};
+    "window", "split", "divider", "right", "drag", "implementation", "panel", "click", "size", "wait", "screenshot", "quit"};
 
 }  // namespace
 

@@ -273,9 +273,9 @@ void drawOverlays(State& s) {
 
     // Frame time, bottom right, always.
     char line[160];
-    std::snprintf(line, sizeof line, "%s  %.1f ms render  %.0f fps  %dx%d%s", s.scene.renderer.c_str(), s.renderMs,
-                  s.frameMs > 0 ? 1000.0 / s.frameMs : 0.0, s.imageWidth, s.imageHeight,
-                  s.interactive ? "  (interactive: half size, double step)" : "");
+    std::snprintf(line, sizeof line, "%s  render %.1f ms (%.1f frames/s)  %dx%d%s", s.scene.renderer.c_str(),
+                  s.renderMs, s.renderMs > 0 ? 1000.0 / s.renderMs : 0.0, s.imageWidth,
+                  s.imageHeight, s.interactive ? "  interactive: reduced size, double step" : "");
     const ImVec2 t = ImGui::CalcTextSize(line);
     fg->AddRectFilled(ImVec2(size.x - t.x - 18 * scale, size.y - t.y - 14 * scale), ImVec2(size.x, size.y),
                       IM_COL32(0, 0, 0, 150));

@@ -7,6 +7,7 @@
 // full-quality frame replaces it.
 #include "voxlab_gl.h"
 
+#include <cmath>
 #include <ctime>
 #include <filesystem>
 
@@ -19,6 +20,7 @@ namespace voxlab::viewer {
 namespace {
 
 constexpr auto kSettle = std::chrono::milliseconds(250);  // idle time before full quality
+constexpr double kInteractiveMs = 90.0;                    // render budget while the mouse is busy
 
 bool isSceneFile(const std::string& path) {
     return path.size() > 5 && path.substr(path.size() - 5) == ".json";
@@ -92,8 +94,8 @@ void renderFrame(State& s) {
     if (!s.dirty && !(s.interactive && !busy)) return;
     if (s.fbWidth <= 0 || s.fbHeight <= 0) return;
     const bool reduced = busy && s.dirty;
-    const int w = reduced ? std::max(1, s.fbWidth / 2) : s.fbWidth;
-    const int h = reduced ? std::max(1, s.fbHeight / 2) : s.fbHeight;
+    const int w = reduced ? std::max(1, int(s.fbWidth / s.reduction)) : s.fbWidth;
+    const int h = reduced ? std::max(1, int(s.fbHeight / s.reduction)) : s.fbHeight;
     if (s.main.engine && s.watcher.changed(s.main.engine->shaderSources())) {
         s.main.engine->reloadShaders();
         if (s.other.engine) s.other.engine->reloadShaders();
@@ -107,6 +109,13 @@ void renderFrame(State& s) {
     glFinish();
     s.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     s.imageWidth = w, s.imageHeight = h;
+    // Hold about 10 frames/s while the mouse is busy: shrink the reduced
+    // image when it renders too slowly, grow it back when there is room
+    // (from half to an eighth of the window's size on each side).
+    if (reduced) {
+        if (s.renderMs > kInteractiveMs) s.reduction = std::min(8.0, s.reduction * std::sqrt(s.renderMs / kInteractiveMs));
+        else if (s.renderMs < 0.5 * kInteractiveMs) s.reduction = std::max(2.0, s.reduction / 1.2);
+    }
     s.interactive = reduced;
     s.dirty = false;
 }

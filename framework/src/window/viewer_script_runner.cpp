@@ -4,6 +4,9 @@
 
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
+#include <cstdio>
+
 #include "voxlab/camera_controller.h"
 #include "voxlab/error.h"
 #include "voxlab/transfer_function.h"
@@ -19,6 +22,7 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
         --waitFrames_;
         return Continue;
     }
+    if (dragFrames_ > 0 || settling_) return drag(s);
     if (s.dirty) return Continue;
     if (next_ >= steps_.size()) return Done;
     const ViewerStep& st = steps_[next_++];
@@ -42,6 +46,10 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
             else s.scene.transferFunction = TransferFunction::load(dataPath(st, 0));
         } else if (c == "camera") {
             applyCameraStep(st, &s.scene.camera);
+        } else if (c == "drag") {
+            dragDx_ = number(st, 0), dragDy_ = number(st, 1), dragFrames_ = integer(st, 2);
+            dragTimes_.clear();
+            return Continue;
         } else if (c == "rotate") {
             rotateCamera(&s.scene.camera, number(st, 0), number(st, 1));
         } else if (c == "window") {
@@ -86,6 +94,33 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
         failStep(st, what);
     }
     s.dirty = true;
+    return Continue;
+}
+
+ScriptRunner::Progress ScriptRunner::drag(State& s) {
+    if (dragFrames_ > 0) {
+        // The frame before this one rendered the previous drag step.
+        if (s.interactive) dragTimes_.push_back(s.renderMs);
+        char size[64];
+        std::snprintf(size, sizeof size, "%dx%d", s.imageWidth, s.imageHeight);
+        if (s.interactive) dragSize_ = size;
+        orbitCamera(&s.scene.camera, s.volume->extent(), dragDx_, dragDy_, s.fbWidth, s.fbHeight);
+        s.lastInput = Clock::now();
+        s.dirty = true;
+        if (--dragFrames_ == 0) settling_ = true;
+        return Continue;
+    }
+    // Settling: the viewer renders full quality once the mouse has rested.
+    if (s.interactive || s.dirty || Clock::now() - s.lastInput < std::chrono::milliseconds(300)) return Continue;
+    settling_ = false;
+    std::vector<double> t = dragTimes_;
+    std::sort(t.begin(), t.end());
+    const double median = t.empty() ? 0.0 : t[t.size() / 2];
+    std::printf("drag: %zu frames, the last at %s, step %g: median render %.1f ms (%.1f frames/s); "
+                "idle, full quality %dx%d, step %g: %.1f ms\n",
+                t.size(), dragSize_.c_str(), std::min(kMaxStep, s.scene.step * 2.0), median,
+                median > 0 ? 1000.0 / median : 0.0, s.imageWidth, s.imageHeight, s.scene.step, s.renderMs);
+    std::fflush(stdout);
     return Continue;
 }
 

@@ -21,9 +21,16 @@ public:
     Progress step(State& s, GLFWwindow* window);
 
 private:
+    Progress drag(State& s);
     std::vector<ViewerStep> steps_;
     std::size_t next_ = 0;
     int waitFrames_ = 0;
+    // A `drag` in progress: frames left, pixels per frame, render times seen.
+    int dragFrames_ = 0;
+    bool settling_ = false;
+    double dragDx_ = 0, dragDy_ = 0;
+    std::vector<double> dragTimes_;
+    std::string dragSize_;
 };
 
 }  // namespace voxlab::viewer

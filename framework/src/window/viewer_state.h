@@ -60,6 +60,7 @@ struct State {
     // Rendering.
     bool dirty = true;              // the scene changed: render again
     bool interactive = false;       // the last images are reduced (mouse busy)
+    double reduction = 2.0;         // while busy: the image is the window's size divided by this
     Clock::time_point lastInput{};
     double renderMs = 0.0, frameMs = 0.0;
     int fbWidth = 0, fbHeight = 0;  // framebuffer pixels

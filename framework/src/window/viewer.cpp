@@ -214,7 +214,7 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
         if (!s.screenshotRequest.empty()) {
             try {
                 saveWindowScreenshot(s.fbWidth, s.fbHeight, s.screenshotRequest);
-                if (script) std::printf("%s\n", s.screenshotRequest.c_str());  // no toast in the next shot
+                if (script) std::printf("%s\n", s.screenshotRequest.c_str()), std::fflush(stdout);  // no toast next
                 else s.say("saved " + s.screenshotRequest, 3.0);
             } catch (const Error& e) {
                 s.say(e.what(), 6.0);

@@ -174,6 +174,22 @@ void techniquePanel(State& s) {
     if (ImGui::Button("open")) s.dropped.push_back(path);
 }
 
+// What the 2D editor starts from: the dataset's preset (datasets/tf2d/),
+// else one triangle at the middle of the window.
+TransferFunction2D startingTransferFunction2D(const State& s) {
+    const std::string stem = std::filesystem::path(s.volume->name()).stem().string();
+    try {
+        return TransferFunction2D::load(resolveDataPath("tf2d/" + stem + ".json"));
+    } catch (const Error&) {
+    }
+    const glm::dvec2 w = s.scene.window.value_or(s.volume->valueRange());
+    Tf2dWidget triangle;
+    triangle.valueRange = glm::dvec2(0.5 * (w.x + w.y));
+    triangle.radius = 1.5;
+    triangle.alpha = 0.6f;
+    return TransferFunction2D({triangle});
+}
+
 void transferFunctionPanel(State& s) {
     const Volume& volume = *s.volume;
     ImGui::SetNextWindowPos(ImVec2(10 * s.contentScale, float(s.fbHeight) - 330 * s.contentScale),
@@ -182,7 +198,7 @@ void transferFunctionPanel(State& s) {
     if (!ImGui::Begin("transfer function", &s.showTransferFunction)) return ImGui::End();
     if (s.scene.renderer == "tf2d") {
         if (!s.histogram2D) s.histogram2D = histogram2D(volume);
-        if (!s.scene.transferFunction2D) s.scene.transferFunction2D = TransferFunction2D();
+        if (!s.scene.transferFunction2D) s.scene.transferFunction2D = startingTransferFunction2D(s);
         if (TransferFunction2DEditor("##tf2d", &*s.scene.transferFunction2D, *s.histogram2D, &s.selectedWidget))
             s.dirty = true;
         return ImGui::End();

@@ -88,6 +88,19 @@ void loadDataset(State& s, const std::string& path) {
 }
 
 void renderFrame(State& s) {
+    // A side whose program has never compiled has no files to watch yet:
+    // try it again every second, so that saving the fix shows the image.
+    if (Clock::now() - s.lastRetry > std::chrono::seconds(1)) {
+        s.lastRetry = Clock::now();
+        for (Side* side : {&s.main, &s.other})
+            if (side->engine && !side->error.empty()) side->engine->reloadShaders(), s.dirty = true;
+    }
+    // Live reload: a saved shader file recompiles at once.
+    if (s.main.engine && s.watcher.changed(s.main.engine->shaderSources())) {
+        s.main.engine->reloadShaders();
+        if (s.other.engine) s.other.engine->reloadShaders();
+        s.dirty = true;
+    }
     const bool busy = s.dragging || s.panning || Clock::now() - s.lastInput < kSettle;
     // Nothing new to show: unless the last images are reduced and the
     // mouse has settled, keep them.
@@ -96,10 +109,6 @@ void renderFrame(State& s) {
     const bool reduced = busy && s.dirty;
     const int w = reduced ? std::max(1, int(s.fbWidth / s.reduction)) : s.fbWidth;
     const int h = reduced ? std::max(1, int(s.fbHeight / s.reduction)) : s.fbHeight;
-    if (s.main.engine && s.watcher.changed(s.main.engine->shaderSources())) {
-        s.main.engine->reloadShaders();
-        if (s.other.engine) s.other.engine->reloadShaders();
-    }
     const auto t0 = Clock::now();
     renderSide(s.main, sideScene(s, s.main, w, h, reduced));
     if (s.split != SplitMode::Off) {

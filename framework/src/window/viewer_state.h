@@ -62,6 +62,7 @@ struct State {
     bool interactive = false;       // the last images are reduced (mouse busy)
     double reduction = 2.0;         // while busy: the image is the window's size divided by this
     Clock::time_point lastInput{};
+    Clock::time_point lastRetry{};  // a side whose shader never compiled is retried every second
     double renderMs = 0.0, frameMs = 0.0;
     int fbWidth = 0, fbHeight = 0;  // framebuffer pixels
     float contentScale = 1.0f;      // high-DPI scale of the window

@@ -55,6 +55,19 @@ fs::path scratch(const std::string& name) {
     return dir;
 }
 
+// Grading against the reference, expected outputs rendered into ROOT/expected
+// with one llvmpipe thread, two stages at once.
+GraderOptions gradingOptions(const fs::path& root) {
+    GraderOptions o;
+    o.voxlab = VOXLAB_BINARY;
+    o.referenceRoot = (kSource / "reference").string();
+    o.expectedDir = (root / "expected").string();
+    o.jobs = 2;
+    o.renderThreads = 1;
+    o.progress = false;
+    return o;
+}
+
 TEST(MutantSuite, EveryGradedStageHasAtLeastThreeMutantsThatApplyCleanly) {
     std::map<std::string, int> perStage;
     for (const Mutant& m : loadMutants()) {
@@ -93,13 +106,7 @@ TEST(MutantSuite, TheGraderFailsEveryMutant) {
         std::ofstream(folder / m.file) << text;
         submissions.push_back({m.name, folder.string(), (root / "reports" / m.name).string(), {m.stage}});
     }
-    GraderOptions o;
-    o.voxlab = VOXLAB_BINARY;
-    o.referenceRoot = (kSource / "reference").string();
-    o.expectedDir = (root / "expected").string();
-    o.jobs = 2;
-    o.renderThreads = 1;
-    o.progress = false;
+    const GraderOptions o = gradingOptions(root);
     const std::vector<json> reports = gradeSubmissions(submissions, o);
     ASSERT_EQ(reports.size(), mutants.size());
     for (std::size_t i = 0; i < mutants.size(); ++i) {
@@ -123,13 +130,7 @@ TEST(MutantSuite, TheGraderFailsEveryMutant) {
 // grader, with one llvmpipe thread: this process uses the test's two).
 TEST(GradingCalibration, TheReferenceRenderedAnotherWayPasses) {
     const fs::path root = scratch("calibration");
-    GraderOptions o;
-    o.voxlab = VOXLAB_BINARY;
-    o.referenceRoot = (kSource / "reference").string();
-    o.expectedDir = (root / "expected").string();
-    o.jobs = 2;
-    o.renderThreads = 1;
-    o.progress = false;
+    const GraderOptions o = gradingOptions(root);
     renderExpectedOutputs(o);
 
     auto context = createHeadlessContext();

@@ -77,6 +77,8 @@ public:
         o.shipped = false;
         renderExpectedOutputs(o);
     }
+    // Everything the file wrote goes with it (reports of hundreds of images).
+    static void TearDownTestSuite() { fs::remove_all(scratchPath("").parent_path()); }
     static GraderOptions options() {
         GraderOptions o;
         o.voxlab = VOXLAB_BINARY;

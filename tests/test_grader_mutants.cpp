@@ -122,6 +122,7 @@ TEST(MutantSuite, TheGraderFailsEveryMutant) {
                     stage["status"].get<std::string>().c_str(), stage["score"].get<double>(),
                     stage["max_score"].get<double>(), stage["message"].get<std::string>().c_str());
     }
+    fs::remove_all(root);
 }
 
 // The reference's own images, with the interpolation switched between the
@@ -165,6 +166,7 @@ TEST(GradingCalibration, TheReferenceRenderedAnotherWayPasses) {
     }
     std::printf("worst tolerance ratio of the reference against itself: %.3f (%s; * = other filtering)\n", worst,
                 worstScene.c_str());
+    fs::remove_all(root);
 }
 
 }  // namespace

@@ -423,25 +423,17 @@ bool TransferFunction2DEditor(const char* label, TransferFunction2D* tf, const H
 
     const ImGuiIO& io = ImGui::GetIO();
     const ImGuiStyle& style = ImGui::GetStyle();
-    const float pad = kTransferFunctionEditorPadding;
-    const float plotHeight = std::max(options.height, 20.0f);
-    const ImVec2 origin = ImGui::GetCursorScreenPos();
-    const float width = std::max(ImGui::GetContentRegionAvail().x, 4.0f * pad + 40.0f);
-    const ImVec2 frameSize(width, plotHeight + 2.0f * pad), frameMax(origin.x + frameSize.x, origin.y + frameSize.y);
     double vlo = histogram.valueLo, vhi = histogram.valueHi, gmax = histogram.gradientMax;
     if (!(std::isfinite(vlo) && std::isfinite(vhi))) vlo = 0.0, vhi = 1.0;
     if (!(vhi > vlo)) vhi = vlo + 1.0;
     if (!(std::isfinite(gmax) && gmax > 0.0)) gmax = 1.0;
     EditorState& state = persistentState<EditorState>(id);
 
-    ImGui::InvisibleButton("##graph", frameSize, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
-    const bool hovered = ImGui::IsItemHovered(), active = ImGui::IsItemActive();
-    if (hovered) {
-        ImGui::SetItemUsingMouseWheel();
-        if (io.MouseWheel != 0.0f) state.zoom = std::clamp(state.zoom * std::pow(1.25f, io.MouseWheel), 1.0f, kMaxZoom);
-    }
-    const Plot plot{ImVec2(origin.x + pad, origin.y + pad), ImVec2(frameMax.x - pad, frameMax.y - pad), vlo, vhi, gmax,
-                    gmax / double(state.zoom)};
+    const EditorFrame frame = editorFrame(options.height, &state.zoom, kMaxZoom);
+    const ImVec2 origin = frame.origin, frameMax = frame.max;
+    const float width = frame.width;
+    const bool hovered = frame.hovered, active = frame.active;
+    const Plot plot{frame.plotMin(), frame.plotMax(), vlo, vhi, gmax, gmax / double(state.zoom)};
     const ImVec2 mouse = io.MousePos;
     Drag& drag = state.drag;
     if (drag.hit.widget >= int(widgets.size())) drag.hit = {};

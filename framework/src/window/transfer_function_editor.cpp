@@ -227,24 +227,16 @@ bool TransferFunctionEditor(const char* label, TransferFunction* tf, const Trans
 
     const ImGuiIO& io = ImGui::GetIO();
     const ImGuiStyle& style = ImGui::GetStyle();
-    const float pad = kTransferFunctionEditorPadding;
-    const float plotHeight = std::max(options.height, 20.0f);
-    const ImVec2 origin = ImGui::GetCursorScreenPos();
-    const float width = std::max(ImGui::GetContentRegionAvail().x, 4.0f * pad + 40.0f);
-    const ImVec2 frameSize(width, plotHeight + 2.0f * pad), frameMax(origin.x + frameSize.x, origin.y + frameSize.y);
     double lo = options.range.x, hi = options.range.y;
     if (!(std::isfinite(lo) && std::isfinite(hi))) lo = 0.0, hi = 1.0;
     if (!(hi > lo)) hi = lo + 1.0;
     EditorState& state = persistentState<EditorState>(id);
 
-    ImGui::InvisibleButton("##graph", frameSize, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
-    const bool hovered = ImGui::IsItemHovered(), active = ImGui::IsItemActive();
-    if (hovered) {
-        ImGui::SetItemUsingMouseWheel();
-        if (io.MouseWheel != 0.0f) state.zoom = std::clamp(state.zoom * std::pow(1.25f, io.MouseWheel), 1.0f, kMaxZoom);
-    }
-    const Plot plot{ImVec2(origin.x + pad, origin.y + pad), ImVec2(frameMax.x - pad, frameMax.y - pad), lo, hi,
-                    1.0 / double(state.zoom)};
+    const EditorFrame frame = editorFrame(options.height, &state.zoom, kMaxZoom);
+    const ImVec2 origin = frame.origin, frameMax = frame.max;
+    const float width = frame.width;
+    const bool hovered = frame.hovered, active = frame.active;
+    const Plot plot{frame.plotMin(), frame.plotMax(), lo, hi, 1.0 / double(state.zoom)};
     const ImVec2 mouse = io.MousePos;
     Drag& drag = state.drag;
     if (drag.point >= int(points.size())) drag.point = -1;

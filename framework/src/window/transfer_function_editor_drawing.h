@@ -3,7 +3,10 @@
 // to src/window/.
 #pragma once
 
+#include <cmath>
+
 #include <imgui.h>
+#include <imgui_internal.h>  // SetItemUsingMouseWheel (ImGui 1.86)
 
 #include <algorithm>
 #include <cstdint>
@@ -13,6 +16,8 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "voxlab/transfer_function_editor.h"
 
 namespace voxlab::tf_editor {
 
@@ -43,6 +48,36 @@ inline std::uint64_t& clickClock() {
 constexpr float kHandleRadius = 5.0f;
 // A press this close (pixels) to a handle's centre grabs it.
 constexpr float kHitRadius = 9.0f;
+
+// The plot frame both editors share: `height` pixels of plot plus padding,
+// across the available width at the cursor, taken by an invisible button
+// (left and right clicks); over it the mouse wheel scales `*zoom` within
+// [1, maxZoom].
+struct EditorFrame {
+    ImVec2 origin, max;  // the frame, padding included
+    float width = 0.0f, pad = 0.0f;
+    bool hovered = false, active = false;
+    ImVec2 plotMin() const { return ImVec2(origin.x + pad, origin.y + pad); }
+    ImVec2 plotMax() const { return ImVec2(max.x - pad, max.y - pad); }
+};
+
+inline EditorFrame editorFrame(float height, float* zoom, float maxZoom) {
+    EditorFrame f;
+    f.pad = kTransferFunctionEditorPadding;
+    f.origin = ImGui::GetCursorScreenPos();
+    f.width = std::max(ImGui::GetContentRegionAvail().x, 4.0f * f.pad + 40.0f);
+    const ImVec2 size(f.width, std::max(height, 20.0f) + 2.0f * f.pad);
+    f.max = ImVec2(f.origin.x + size.x, f.origin.y + size.y);
+    ImGui::InvisibleButton("##graph", size, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+    f.hovered = ImGui::IsItemHovered();
+    f.active = ImGui::IsItemActive();
+    if (f.hovered) {
+        ImGui::SetItemUsingMouseWheel();
+        const float wheel = ImGui::GetIO().MouseWheel;
+        if (wheel != 0.0f) *zoom = std::clamp(*zoom * std::pow(1.25f, wheel), 1.0f, maxZoom);
+    }
+    return f;
+}
 
 inline ImU32 colour(const glm::vec3& rgb, float alpha) {
     return ImGui::ColorConvertFloat4ToU32(ImVec4(rgb.r, rgb.g, rgb.b, alpha));

@@ -35,7 +35,31 @@ for item in CMakeLists.txt framework shaders assignments datasets docs; do
 done
 mkdir -p "$out/tools"
 cp "$root/tools/setup.sh" "$out/tools/"
-cp "$root/README.md" "$out/README.md"
+cp "$root/README.md" "$out/README_framework.md"   # the framework's full guide
+cat > "$out/README.md" <<'MD'
+# voxlab (student release)
+
+voxlab is a framework for learning volume rendering: you write the renderer's stages (sampling,
+MIP, compositing, isosurfaces, gradients, shading, transfer functions, texture slicing) as small
+GLSL and C++ functions; the framework does the rest.
+
+On Debian 12:
+
+```sh
+tools/setup.sh                 # installs what is missing, builds, opens the viewer (or renders headless)
+```
+
+- **Your work** is in `assignments/`, one folder per stage, each with its handout (`README.md`).
+  Start with `assignments/README.md`. A stage you have not done shows a magenta checkerboard.
+- **Look at it:** `build/bin/voxlab view` (H lists the keys; R or saving a shader reloads it),
+  or `build/bin/voxlab render assignments/mip/scenes/bonsai_oblique.json --out mine.png`.
+- **Check it** the way it will be graded: `build/bin/voxlab check --stage mip`, then open
+  `voxlab-check/index.html`. How grading works: `docs/grading.md`.
+- **C++ stages** (`texslice2d`, `texslice3d`) are compiled into `voxlab`: rebuild with
+  `cmake --build build` after editing them (`voxlab check` compiles them itself).
+- The framework's full guide (conventions, scene files, datasets, renderers, the viewer):
+  `README_framework.md`.
+MD
 mkdir -p "$out/tests/golden"   # the scenes the handouts render (JSON only)
 cp -r "$root/tests/golden/scenes" "$out/tests/golden/"
 
@@ -52,11 +76,12 @@ fi
 python3 - "$root/reference" "$out" <<'PY'
 import os, re, sys
 reference, out = sys.argv[1], sys.argv[2]
-# Every run of three consecutive non-blank lines of a solution block. One
+# Every run of three consecutive lines of a solution block. One
 # line alone may be generic ("return ray.t_exit > ray.t_entry;" is also
 # framework code); three in a row are the solution.
 def lines_of(path):
-    return [l.strip() for l in open(path, errors="replace") if l.strip()]
+    # Lines of punctuation alone ("}", "});") say nothing about a solution.
+    return [l.strip() for l in open(path, errors="replace") if len(re.sub(r"\W", "", l)) >= 2]
 runs = set()
 for d, _, files in os.walk(reference):
     for f in files:

@@ -2,6 +2,8 @@
 // error paths (one line on stderr, non-zero exit).
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <fstream>
 
@@ -40,7 +42,7 @@ protected:
 };
 
 TEST_F(Cli, HelpWorksForEveryCommand) {
-    for (const std::string cmd : {"render", "info", "list", "view"}) {
+    for (const std::string cmd : {"render", "info", "list", "view", "compare", "grade", "check", "bench"}) {
         const CommandResult r = runVoxlab(cmd + " --help");
         EXPECT_EQ(r.exitCode, 0) << cmd;
         EXPECT_NE(r.out.find("usage: voxlab " + cmd), std::string::npos) << r.out;
@@ -234,6 +236,30 @@ TEST_F(Cli, ViewerScreenshotUnderXvfb) {
     EXPECT_GT(panelSum / (85.0 * 285.0), 0.05) << "no panel drawn";
     EXPECT_GT(panelMax - panelMin, 0.3) << "panel has no text";
     EXPECT_GT(bright, 100) << "no volume drawn";
+}
+
+// voxlab bench: N timed frames and the samples they take. From the +z axis
+// view, orthographic, at one pixel per voxel and step 1, every ray through
+// a 32^3 volume takes exactly 32 samples: 32 * 32 * 32 a frame.
+TEST_F(Cli, BenchTimesFramesAndCountsSamples) {
+    const CommandResult r = runVoxlab("bench --dataset phantom:sphere:32 --view +z --projection orthographic "
+                                      "--size 32x32 --step 1 --turn 0 --frames 3 --warmup 1 --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["frames"], 3);
+    ASSERT_EQ(j["ms_per_frame"].size(), 3u);
+    for (const auto& t : j["ms_per_frame"]) EXPECT_GT(t.get<double>(), 0.0);
+    EXPECT_DOUBLE_EQ(j["samples_per_frame"].get<double>(), 32.0 * 32.0 * 32.0);
+    EXPECT_LE(j["q1_ms"].get<double>(), j["median_ms"].get<double>());
+    EXPECT_LE(j["median_ms"].get<double>(), j["q3_ms"].get<double>());
+    // Half the step doubles the samples (rounded per ray: 64 each).
+    const CommandResult half = runVoxlab("bench --dataset phantom:sphere:32 --view +z --projection orthographic "
+                                         "--size 32x32 --step 0.5 --turn 0 --frames 1 --warmup 0 --json");
+    ASSERT_EQ(half.exitCode, 0) << half.err;
+    EXPECT_DOUBLE_EQ(nlohmann::json::parse(half.out)["samples_per_frame"].get<double>(), 64.0 * 32.0 * 32.0);
+    const CommandResult bad = runVoxlab("bench --dataset phantom:sphere:32 --frames 0");
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.err.find("--frames"), std::string::npos) << bad.err;
 }
 
 }  // namespace

@@ -1,0 +1,150 @@
+// voxlab bench: how fast a scene renders, frame after frame.
+//
+// After a warm-up (shader compilation, texture uploads), it renders N
+// frames, turning the camera a little between frames so that nothing can be
+// reused from the frame before, and prints the median and spread of the
+// time per frame, and the samples per second: the samples the ray-casting
+// renderers take by the README's rule (per pixel, floor(length / step + 1/2)
+// over the part of the ray inside the box and the region of interest).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "voxlab/camera.h"
+#include "voxlab/error.h"
+#include "voxlab/gl_context.h"
+#include "voxlab/render_engine.h"
+#include "voxlab/volume.h"
+#include "voxlab_gl.h"
+
+namespace voxlab::cli {
+
+namespace {
+
+// Samples one frame of a ray-casting renderer takes (cutting planes and
+// slabs, which shorten rays further, are not counted).
+double samplesPerFrame(const Volume& volume, const Scene& scene) {
+    const Camera camera = Camera::make(scene.camera, volume.extent(), scene.width, scene.height);
+    glm::dvec3 lo(0.0), hi = volume.extent();
+    if (scene.roi) {
+        lo = glm::max(lo, scene.roi->min * volume.spacing());
+        hi = glm::min(hi, scene.roi->max * volume.spacing());
+    }
+    const double step = scene.step * volume.minSpacing();
+    double total = 0.0;
+    for (int y = 0; y < scene.height; ++y)
+        for (int x = 0; x < scene.width; ++x) {
+            glm::dvec3 o, d;
+            camera.ray(x + 0.5, y + 0.5, &o, &d);
+            // The slab method: the ray's interval inside each pair of faces.
+            double t0 = 0.0, t1 = 1e300;
+            for (int a = 0; a < 3; ++a) {
+                if (std::abs(d[a]) < 1e-300) {
+                    if (o[a] < lo[a] || o[a] > hi[a]) t1 = -1.0;
+                    continue;
+                }
+                const double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+                t0 = std::max(t0, std::min(ta, tb));
+                t1 = std::min(t1, std::max(ta, tb));
+            }
+            if (t1 > t0) total += std::floor((t1 - t0) / step + 0.5);
+        }
+    return total;
+}
+
+double percentile(std::vector<double> v, double p) {
+    std::sort(v.begin(), v.end());
+    const double at = p / 100.0 * double(v.size() - 1);
+    const std::size_t i = std::size_t(at);
+    return i + 1 < v.size() ? v[i] + (at - double(i)) * (v[i + 1] - v[i]) : v.back();
+}
+
+}  // namespace
+
+int benchCommand(int argc, char** argv) {
+    std::vector<OptionSpec> specs = sceneOptions();
+    specs.push_back({"frames", "N", "frames to time (default 10)"});
+    specs.push_back({"warmup", "N", "frames rendered first and not timed (default 2)"});
+    specs.push_back({"turn", "DEG", "azimuth added before each frame (default 0.5)"});
+    specs.push_back({"json", "", "print the figures as JSON"});
+    specs.push_back({"gl", "BACKEND", "headless OpenGL: auto, osmesa, egl"});
+    specs.push_back({"help", "", "show this help"});
+    const Args args(specs, argc, argv, 2, "bench");
+    if (args.has("help")) {
+        std::cout << "usage: voxlab bench [SCENE.json] [--frames N] [--json] [scene options]\n\n"
+                     "Renders the scene headless frame after frame, turning the camera a little between\n"
+                     "frames, and prints the median and spread of the time per frame and the samples per\n"
+                     "second (ray-casting renderers).\n\n"
+                  << formatOptions(specs);
+        return 0;
+    }
+    Scene scene = sceneFromArgs(args, "bench");
+    const int frames = args.get("frames") ? parseInt(*args.get("frames"), "--frames") : 10;
+    const int warmup = args.get("warmup") ? parseInt(*args.get("warmup"), "--warmup") : 2;
+    const double turn = args.get("turn") ? parseNumber(*args.get("turn"), "--turn") : 0.5;
+    if (frames < 1 || frames > 100000) throw Error("option --frames: must be in 1..100000");
+    if (warmup < 0 || warmup > 1000) throw Error("option --warmup: must be in 0..1000");
+    const Renderer& renderer = rendererRegistry().get(scene.renderer);
+    renderer.resolveParameters(scene.parameters);
+
+    const Volume volume = loadVolume(scene.dataset);
+    auto context = createHeadlessContext(parseHeadlessBackend(args.get("gl").value_or("auto")));
+    RenderEngine engine;
+    engine.setVolume(volume);
+    CameraSpec& cam = scene.camera;
+    std::vector<double> ms;
+    double samples = 0.0;
+    for (int f = 0; f < warmup + frames; ++f) {
+        if (f >= warmup && turn != 0.0) {
+            if (!cam.view.empty()) axisViewOrbitAngles(cam.view, &cam.azimuth, &cam.elevation), cam.view.clear();
+            cam.azimuth += turn;
+        }
+        const auto t0 = std::chrono::steady_clock::now();
+        engine.renderOffscreen(scene);
+        glFinish();
+        const double elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        if (f < warmup) continue;
+        ms.push_back(elapsed);
+        if (!renderer.objectOrder()) samples += samplesPerFrame(volume, scene);
+    }
+    double totalMs = 0.0;
+    for (double t : ms) totalMs += t;
+    const double median = percentile(ms, 50.0), q1 = percentile(ms, 25.0), q3 = percentile(ms, 75.0);
+    const double lowest = *std::min_element(ms.begin(), ms.end()), highest = *std::max_element(ms.begin(), ms.end());
+    const bool counted = !renderer.objectOrder();
+    const double samplesPerSecond = counted && totalMs > 0 ? samples / (totalMs / 1000.0) : 0.0;
+    if (args.has("json")) {
+        nlohmann::json j = {{"dataset", scene.dataset},   {"renderer", scene.renderer},
+                            {"width", scene.width},       {"height", scene.height},
+                            {"step", scene.step},         {"frames", frames},
+                            {"ms_per_frame", ms},         {"median_ms", median},
+                            {"q1_ms", q1},                {"q3_ms", q3},
+                            {"min_ms", lowest},           {"max_ms", highest},
+                            {"gl", context->description()}};
+        if (counted) {
+            j["samples_per_frame"] = samples / frames;
+            j["samples_per_second"] = samplesPerSecond;
+        }
+        // No empty-space skipping yet: every sample counted is taken.
+        j["skipped_fraction"] = 0.0;
+        std::cout << j.dump(2) << "\n";
+        return 0;
+    }
+    std::printf("%s, %s, %dx%d, step %g, %d frames (after %d warm-up), camera turning %g deg a frame\n",
+                volume.name().c_str(), scene.renderer.c_str(), scene.width, scene.height, scene.step, frames, warmup,
+                turn);
+    std::printf("gl: %s\n", context->description().c_str());
+    std::printf("ms/frame: median %.1f (quartiles %.1f .. %.1f, min %.1f, max %.1f); %.2f frames/s\n", median, q1, q3,
+                lowest, highest, median > 0 ? 1000.0 / median : 0.0);
+    if (counted)
+        std::printf("samples: %.3g a frame, %.3g a second; skipped: 0%% (no empty-space skipping)\n", samples / frames,
+                    samplesPerSecond);
+    return 0;
+}
+
+}  // namespace voxlab::cli

@@ -41,18 +41,9 @@ double samplesPerFrame(const Volume& volume, const Scene& scene) {
         for (int x = 0; x < scene.width; ++x) {
             glm::dvec3 o, d;
             camera.ray(x + 0.5, y + 0.5, &o, &d);
-            // The slab method: the ray's interval inside each pair of faces.
-            double t0 = 0.0, t1 = 1e300;
-            for (int a = 0; a < 3; ++a) {
-                if (std::abs(d[a]) < 1e-300) {
-                    if (o[a] < lo[a] || o[a] > hi[a]) t1 = -1.0;
-                    continue;
-                }
-                const double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
-                t0 = std::max(t0, std::min(ta, tb));
-                t1 = std::min(t1, std::max(ta, tb));
-            }
-            if (t1 > t0) total += std::floor((t1 - t0) / step + 0.5);
+            double t0, t1;
+            if (!clipRayToBox(o, d, lo, hi, &t0, &t1)) continue;
+            total += std::floor((t1 - t0) / step + 0.5);
         }
     return total;
 }

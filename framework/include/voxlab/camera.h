@@ -80,4 +80,10 @@ struct Camera {
     glm::mat4 clipFromWorld() const;
 };
 
+// Clips the ray origin + t dir to the box [lo, hi] (the slab method): *t0
+// and *t1 receive where it enters and leaves, with t0 never behind the
+// origin. Returns whether any of the ray is inside.
+bool clipRayToBox(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& lo, const glm::dvec3& hi,
+                  double* t0, double* t1);
+
 }  // namespace voxlab

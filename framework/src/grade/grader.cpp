@@ -123,7 +123,7 @@ void renderExpectedOutputs(const GraderOptions& given) {
         StageRun run{stage, options.referenceRoot, (fs::path(options.expectedDir) / stage).string(),
                      (fs::path(options.expectedDir) / ".work" / stage).string(), ""};
         fs::remove_all(run.outputDir);
-        const RunOutcome outcome = grading::runStage(run, loadStageManifest(options.referenceRoot, stage), options);
+        const RunOutcome outcome = grading::runStage(run, options);
         if (!outcome.compiled) failures[i] = stage + ": " + outcome.compileLog;
         else if (!outcome.finished) failures[i] = stage + ": the reference " + outcome.ended + "\n" + outcome.output;
         for (const auto& entry : fs::directory_iterator(run.outputDir))
@@ -175,7 +175,7 @@ std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, c
                          {"max_score", manifest.points}, {"status", "error"},
                          {"message", "the submission has no folder " + job.stage + "/"}};
             } else {
-                const RunOutcome outcome = grading::runStage(run, manifest, options);
+                const RunOutcome outcome = grading::runStage(run, options);
                 entry = grading::scoreStage(run, outcome, manifest, options, sub.folder);
             }
             fs::remove_all(run.workDir);

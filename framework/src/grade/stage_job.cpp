@@ -50,7 +50,7 @@ std::vector<std::string> cppFiles(const fs::path& folder, const fs::path& relati
 
 }  // namespace
 
-RunOutcome runStage(const StageRun& run, const StageManifest& manifest, const GraderOptions& options) {
+RunOutcome runStage(const StageRun& run, const GraderOptions& options) {
     RunOutcome outcome;
     fs::create_directories(run.outputDir);
     fs::create_directories(run.workDir);
@@ -112,7 +112,6 @@ RunOutcome runStage(const StageRun& run, const StageManifest& manifest, const Gr
         const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
         limits.environment["LP_NUM_THREADS"] = std::to_string(std::max(1u, cores / unsigned(std::max(1, options.jobs))));
     }
-    (void)manifest;
     const ChildResult result = runChild(worker, limits);
     outcome.finished = result.succeeded();
     outcome.ended = result.describe(limits.seconds);

@@ -33,7 +33,7 @@ struct RunOutcome {
 // Copies the stage (isolated) or uses the tree as it is, builds the C++ of
 // the implementation into a stage library if there is any, and runs
 // `voxlab grade-worker` for the stage under the options' limits.
-RunOutcome runStage(const StageRun& run, const StageManifest& manifest, const GraderOptions& options);
+RunOutcome runStage(const StageRun& run, const GraderOptions& options);
 
 // Scores a finished (or failed) run against the expected outputs; returns
 // the stage's entry of report.json.

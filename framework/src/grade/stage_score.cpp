@@ -35,11 +35,10 @@ void replaceAll(std::string& s, const std::string& from, const std::string& to) 
 // Compiler logs name files by absolute path; a student reads them relative
 // to their own folder ("mip/mip.glsl:14:9"), framework files relative to
 // the project ("shaders/voxlab/ray.glsl").
-std::string relativePaths(std::string text, const StageRun& run, const GraderOptions& options) {
+std::string relativePaths(std::string text, const StageRun& run) {
     replaceAll(text, (fs::path(run.workDir) / "impl").string() + "/", "");
     replaceAll(text, fs::path(run.implementationRoot).lexically_normal().string() + "/", "");
     replaceAll(text, fs::path(projectRoot()).lexically_normal().string() + "/", "");
-    (void)options;
     return text;
 }
 
@@ -66,7 +65,7 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
 
     double weightSum = 0.0, credit = 0.0;
     bool allPassed = true;
-    std::string compileLog = outcome.compiled ? "" : relativePaths(outcome.compileLog, run, options);
+    std::string compileLog = outcome.compiled ? "" : relativePaths(outcome.compileLog, run);
     std::string firstError;
     json scenes = json::array(), checks = json::array();
     for (const GradedScene& scene : manifest.scenes) {
@@ -101,7 +100,7 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
                               100.0 * m.fractionOver, scene.tolerance.maxDifference, m.ssim, m.flipMean);
                 entry["message"] = line;
             } else if (auto e = readJson(error)) {
-                const std::string message = relativePaths(e->value("message", "error"), run, options);
+                const std::string message = relativePaths(e->value("message", "error"), run);
                 if (e->value("kind", "") == "compile_error" && compileLog.empty()) compileLog = message;
                 throw Error(firstLine(message));
             } else {
@@ -139,7 +138,7 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
                 entry["message"] = c.summary;
                 entry["examples"] = c.examples;
             } else if (auto e = readJson(output / "checks" / (check.name + run.suffix + ".error.json"))) {
-                throw Error(firstLine(relativePaths(e->value("message", "error"), run, options)));
+                throw Error(firstLine(relativePaths(e->value("message", "error"), run)));
             } else {
                 throw Error("no result: the stage's process " + outcome.ended + " before this check");
             }
@@ -195,7 +194,7 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
                   " items outside tolerance" + (firstError.empty() ? "" : "; " + firstError);
     }
     if (!outcome.finished && !outcome.output.empty() && status != "compile_error")
-        stage["log"] = relativePaths(outcome.output, run, options);
+        stage["log"] = relativePaths(outcome.output, run);
     if (manifest.points == 0.0 && status == "passed") status = "example";
     stage["status"] = status;
     stage["message"] = message;

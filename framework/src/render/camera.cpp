@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "voxlab/error.h"
 
@@ -116,6 +117,22 @@ void Camera::ray(double px, double py, glm::dvec3* origin, glm::dvec3* direction
         *origin = position;
         *direction = glm::normalize(forward + u * right + v * down);
     }
+}
+
+bool clipRayToBox(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& lo, const glm::dvec3& hi,
+                  double* t0, double* t1) {
+    double enter = 0.0, leave = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        if (dir[a] == 0.0) {
+            if (origin[a] < lo[a] || origin[a] > hi[a]) return false;  // parallel to this slab, outside it
+            continue;
+        }
+        const double ta = (lo[a] - origin[a]) / dir[a], tb = (hi[a] - origin[a]) / dir[a];
+        enter = std::max(enter, std::min(ta, tb));
+        leave = std::min(leave, std::max(ta, tb));
+    }
+    *t0 = enter, *t1 = leave;
+    return leave > enter;
 }
 
 glm::mat4 Camera::clipFromWorld() const {

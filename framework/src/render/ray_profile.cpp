@@ -208,24 +208,6 @@ struct Lighting {
     }
 };
 
-// Clips [*t0, *t1] to the box [lo, hi] (slab method); t0 never goes behind
-// the origin. Returns whether anything is left.
-bool clipToBox(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& lo, const glm::dvec3& hi,
-               double* t0, double* t1) {
-    double enter = 0.0, leave = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a) {
-        if (dir[a] == 0.0) {
-            if (origin[a] < lo[a] || origin[a] > hi[a]) return false;  // parallel to this slab, outside it
-            continue;
-        }
-        const double ta = (lo[a] - origin[a]) / dir[a], tb = (hi[a] - origin[a]) / dir[a];
-        enter = std::max(enter, std::min(ta, tb));
-        leave = std::min(leave, std::max(ta, tb));
-    }
-    *t0 = enter, *t1 = leave;
-    return leave > enter;
-}
-
 // Keeps the part of [*t0, *t1] where dot(p - point, normal) >= 0.
 bool clipToHalfSpace(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& point,
                      const glm::dvec3& normal, double* t0, double* t1) {
@@ -318,7 +300,7 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
         empty = lo.x >= hi.x || lo.y >= hi.y || lo.z >= hi.z;
     }
     double t0 = 0.0, t1 = 0.0;
-    bool hits = !empty && clipToBox(origin, dir, lo, hi, &t0, &t1);
+    bool hits = !empty && clipRayToBox(origin, dir, lo, hi, &t0, &t1);
     if (hits && scene.cuttingPlane) {
         const CuttingPlane& cut = *scene.cuttingPlane;
         const glm::dvec3 point = cut.point.value_or(glm::dvec3(volume.dims()) * 0.5) * volume.spacing();

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "transfer_function_editor_drawing.h"  // inputText for std::string
 #include "viewer_state.h"
 #include "voxlab/camera.h"
 #include "voxlab/error.h"
@@ -60,9 +61,7 @@ bool rendererCombo(const char* label, std::string* id, bool allowSame) {
         if (allowSame && ImGui::Selectable("(same as left)", id->empty())) *id = "", changed = true;
         int k = 1;
         for (const auto& r : rendererRegistry().all()) {
-            char name[96];
-            std::snprintf(name, sizeof name, "%s%s", r->id().c_str(), k <= 9 ? "" : "");
-            if (ImGui::Selectable(name, r->id() == *id)) *id = r->id(), changed = true;
+            if (ImGui::Selectable(r->id().c_str(), r->id() == *id)) *id = r->id(), changed = true;
             if (k <= 9) {
                 ImGui::SameLine(ImGui::GetContentRegionAvail().x - 10);
                 ImGui::TextDisabled("%d", k);
@@ -155,23 +154,23 @@ void techniquePanel(State& s) {
     ImGui::SameLine();
     if (ImGui::Button("help (H)")) s.showHelp = !s.showHelp;
 
-    static char path[512] = "";
-    if (path[0] == 0 && !s.scenePath.empty()) std::snprintf(path, sizeof path, "%s", s.scenePath.c_str());
-    ImGui::InputText("##scenepath", path, sizeof path);
+    if (s.scenePathField.empty()) s.scenePathField = s.scenePath;
+    tf_editor::inputText("##scenepath", &s.scenePathField);
     ImGui::SameLine();
     if (ImGui::Button("save scene")) {
+        const std::string path = s.scenePathField;
         try {
             std::ofstream out(path);
-            if (!out) throw Error(std::string(path) + ": cannot write");
+            if (!out) throw Error(path + ": cannot write");
             out << s.scene.toJson().dump(2) << "\n";
             s.scenePath = path;
-            s.say(std::string("saved ") + path);
+            s.say("saved " + path);
         } catch (const std::exception& e) {
             s.say(e.what());
         }
     }
     ImGui::SameLine();
-    if (ImGui::Button("open")) s.dropped.push_back(path);
+    if (ImGui::Button("open")) s.dropped.push_back(s.scenePathField);
 }
 
 // What the 2D editor starts from: the dataset's preset (datasets/tf2d/),

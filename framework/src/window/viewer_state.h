@@ -50,7 +50,8 @@ struct Side {
 
 struct State {
     Scene scene;
-    std::string scenePath;          // where "save scene" writes
+    std::string scenePath;          // the scene last opened or saved
+    std::string scenePathField;     // the panel's path field (save scene, open)
     std::unique_ptr<Volume> volume;
     Side main, other;               // `other` is the right side of a split view
     std::string studentRoot;        // the implementation switch's "student" folder

@@ -36,13 +36,6 @@ fs::path scratch(const std::string& name) {
     return dir;
 }
 
-std::string readFile(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 // Copies reference/ and replaces `find` (which must occur once) in one file.
 fs::path mutatedCopy(const fs::path& into, const std::string& file, const std::string& find,
                      const std::string& replace) {

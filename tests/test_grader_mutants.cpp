@@ -13,6 +13,7 @@
 #include <map>
 #include <sstream>
 
+#include "support/run_command.h"
 #include "voxlab/gl_context.h"
 #include "voxlab/grader.h"
 #include "voxlab/grading.h"
@@ -28,13 +29,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 const fs::path kSource = VOXLAB_SOURCE_DIR;
-
-std::string readFile(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 struct Mutant {
     std::string stage, name, file, find, replace, bug;

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "support/gl_fixture.h"
+#include "support/run_command.h"
 #include "voxlab/error.h"
 #include "voxlab/shader.h"
 
@@ -18,13 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 TEST(LiveReload, ABrokenEditKeepsTheLastGoodShaderAndSaysWhy) {
     auto context = createHeadlessContext();
     const fs::path root = fs::path(::testing::TempDir()) / ("voxlab_reload_" + std::to_string(getpid()));
@@ -32,7 +26,7 @@ TEST(LiveReload, ABrokenEditKeepsTheLastGoodShaderAndSaysWhy) {
     fs::create_directories(root);
     fs::copy(fs::path(VOXLAB_SOURCE_DIR) / "reference" / "mip", root / "mip", fs::copy_options::recursive);
     const fs::path mip = root / "mip" / "mip.glsl";
-    const std::string good = slurp(mip);
+    const std::string good = readFile(mip);
 
     RenderEngine engine(root.string());
     const Volume volume = makePhantom("phantom:sphere:16");

@@ -2,7 +2,7 @@
 """Times one scene with VTK's GPU ray caster and with voxlab, on the same machine.
 
     xvfb-run -a /usr/bin/python3 bench/compare_vtk.py [--renderer composite|mip] [--frames N]
-                                                      [--size 512] [--step 0.5] [--out DIR]
+                                                      [--size 512] [--step 0.5] [--out DIR] [--json]
 
 The peer is vtkGPUVolumeRayCastMapper (Debian 12: python3-vtk9) on the same
 OpenGL (Mesa llvmpipe under Xvfb here). Settings are matched: the same
@@ -14,10 +14,17 @@ unit distance = the smallest spacing, the same "opacity per unit length" as
 voxlab's), trilinear interpolation, black background. voxlab's voxel i is
 centred at (i + 1/2) spacing, so the VTK volume's origin is half a voxel in.
 
-Both run N frames after a warm-up, the camera turning 0.5 degrees a frame.
-It prints both medians and their ratio, and writes DIR/vtk.png,
-DIR/voxlab.png and DIR/side_by_side.png (VTK left). Ratios, not absolute
-times, are what a shared machine measures reliably.
+VTK filters the volume with the GPU's trilinear filtering (a 3D texture
+read with linear filtering); voxlab's matching setting is `--interpolation
+hardware`. voxlab is timed in three set-ups: that one, the same without
+empty-space skipping, and the shader's own trilinear sampling (the sampling
+stage, exact in float) with skipping.
+
+Every run is N frames after a warm-up, the camera turning 0.5 degrees a
+frame. It prints each median and its ratio to VTK's, and writes
+DIR/vtk.png, DIR/voxlab.png (the matched set-up) and DIR/side_by_side.png
+(VTK left). Ratios, not absolute times, are what a shared machine measures
+reliably; --json prints the figures as JSON as well.
 """
 import argparse
 import gzip
@@ -79,6 +86,7 @@ def main():
     ap.add_argument("--step", type=float, default=0.5)
     ap.add_argument("--out", default="/tmp/voxlab_compare_vtk")
     ap.add_argument("--voxlab", default=os.path.join(ROOT, "build", "bin", "voxlab"))
+    ap.add_argument("--json", action="store_true", help="also print the figures as JSON")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     azimuth, elevation, fov, distance = 35.0, 25.0, 30.0, 4.0
@@ -170,18 +178,22 @@ def main():
     writer.Write()
 
     scene = ["--dataset", "bonsai.nrrd", "--renderer", args.renderer, "--size", f"{args.size}x{args.size}",
-             "--step", str(args.step), "--interpolation", "trilinear", "--azimuth", str(azimuth),
-             "--elevation", str(elevation), "--fov", str(fov), "--distance", str(distance),
-             "--projection", "perspective"]
+             "--step", str(args.step), "--azimuth", str(azimuth), "--elevation", str(elevation), "--fov", str(fov),
+             "--distance", str(distance), "--projection", "perspective"]
     if args.renderer == "composite":
         scene += ["--tf", "tf/bonsai.json"]
     else:
         scene += ["--window", "0,255"]
-    bench = subprocess.run([args.voxlab, "bench", *scene, "--frames", str(args.frames), "--json"],
-                           check=True, capture_output=True, text=True)
-    voxlab = json.loads(bench.stdout)
-    subprocess.run([args.voxlab, "render", *scene, "--out", os.path.join(args.out, "voxlab.png")], check=True,
-                   capture_output=True)
+    setups = [("GPU trilinear filtering, skipping on (matched)", ["--interpolation", "hardware"]),
+              ("GPU trilinear filtering, skipping off", ["--interpolation", "hardware", "--skip-empty-space", "off"]),
+              ("shader trilinear, skipping on", ["--interpolation", "trilinear"])]
+    voxlab = []
+    for name, options in setups:
+        bench = subprocess.run([args.voxlab, "bench", *scene, *options, "--frames", str(args.frames), "--json"],
+                               check=True, capture_output=True, text=True)
+        voxlab.append((name, json.loads(bench.stdout)))
+    subprocess.run([args.voxlab, "render", *scene, *setups[0][1], "--out", os.path.join(args.out, "voxlab.png")],
+                   check=True, capture_output=True)
 
     png = vtk.vtkPNGReader()
     png.SetFileName(os.path.join(args.out, "voxlab.png"))
@@ -202,10 +214,19 @@ def main():
     vtk_median = statistics.median(times)
     print(f"bonsai {args.renderer}, {args.size}x{args.size}, step {args.step}, {args.frames} frames")
     print(f"VTK {vtk.vtkVersion.GetVTKVersion()} GPU ray caster: median {vtk_median:.1f} ms/frame")
-    print(f"voxlab: median {voxlab['median_ms']:.1f} ms/frame ({voxlab['gl']})")
-    print(f"ratio voxlab / VTK: {voxlab['median_ms'] / vtk_median:.2f}")
+    for name, figures in voxlab:
+        skipped = figures.get("skipped_fraction", 0.0)
+        print(f"voxlab, {name}: median {figures['median_ms']:.1f} ms/frame, ratio to VTK "
+              f"{figures['median_ms'] / vtk_median:.2f} ({100 * skipped:.0f}% of samples skipped)")
+    print(f"gl: {voxlab[0][1]['gl']}")
     print(f"images: {os.path.join(args.out, 'side_by_side.png')} (VTK left, voxlab right)")
-
+    if args.json:
+        print(json.dumps({"renderer": args.renderer, "size": args.size, "step": args.step, "frames": args.frames,
+                          "vtk_median_ms": vtk_median,
+                          "voxlab": [{"setup": name, "median_ms": f["median_ms"],
+                                      "ratio": f["median_ms"] / vtk_median,
+                                      "skipped_fraction": f.get("skipped_fraction", 0.0)} for name, f in voxlab]},
+                         indent=2))
 
 if __name__ == "__main__":
     main()

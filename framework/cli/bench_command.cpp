@@ -5,7 +5,10 @@
 // reused from the frame before, and prints the median and spread of the
 // time per frame, and the samples per second: the samples the ray-casting
 // renderers take by the README's rule (per pixel, floor(length / step + 1/2)
-// over the part of the ray inside the box and the region of interest).
+// over the part of the ray inside the box and the region of interest), and
+// how many of those the shaders really took, counted on the GPU in one more
+// frame (RenderEngine::countSamples): the rest were skipped, by empty-space
+// skipping or early ray termination.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,6 +20,7 @@
 #include "commands.h"
 #include "voxlab/camera.h"
 #include "voxlab/error.h"
+#include "voxlab/flip.h"
 #include "voxlab/gl_context.h"
 #include "voxlab/render_engine.h"
 #include "voxlab/volume.h"
@@ -48,6 +52,21 @@ double samplesPerFrame(const Volume& volume, const Scene& scene) {
     return total;
 }
 
+// The per-pixel counts (red channel) through the magma colour map, black
+// for none, bright yellow for the most any pixel took (the largest count is
+// printed, so that two maps can be compared).
+void saveSampleMap(const Image& counts, const std::string& path) {
+    float most = 0.0f;
+    for (std::size_t i = 0; i < counts.rgba.size(); i += 4) most = std::max(most, counts.rgba[i]);
+    Image map(counts.width, counts.height);
+    for (std::size_t i = 0; i < counts.rgba.size(); i += 4) {
+        const glm::vec3 c = magma(most > 0.0f ? counts.rgba[i] / most : 0.0);
+        map.rgba[i] = c.r, map.rgba[i + 1] = c.g, map.rgba[i + 2] = c.b, map.rgba[i + 3] = 1.0f;
+    }
+    savePng(map, path);
+    std::fprintf(stderr, "sample map: %s (brightest: %.0f samples)\n", path.c_str(), double(most));
+}
+
 double percentile(std::vector<double> v, double p) {
     std::sort(v.begin(), v.end());
     const double at = p / 100.0 * double(v.size() - 1);
@@ -63,6 +82,8 @@ int benchCommand(int argc, char** argv) {
     specs.push_back({"warmup", "N", "frames rendered first and not timed (default 2)"});
     specs.push_back({"turn", "DEG", "azimuth added before each frame (default 0.5)"});
     specs.push_back({"json", "", "print the figures as JSON"});
+    specs.push_back({"sample-map", "FILE.png", "save the samples each pixel took at the last view, as a heat map"});
+    specs.push_back({"implementation", "DIR", "stage shaders from DIR instead of reference/ (a submission)"});
     specs.push_back({"gl", "BACKEND", "headless OpenGL: auto, osmesa, egl"});
     specs.push_back({"help", "", "show this help"});
     const Args args(specs, argc, argv, 2, "bench");
@@ -82,10 +103,12 @@ int benchCommand(int argc, char** argv) {
     if (warmup < 0 || warmup > 1000) throw Error("option --warmup: must be in 0..1000");
     const Renderer& renderer = rendererRegistry().get(scene.renderer);
     renderer.resolveParameters(scene.parameters);
+    // Samples are counted for ray casters without a cutting plane.
+    const bool counted = !renderer.objectOrder() && !scene.cuttingPlane;
 
     const Volume volume = loadVolume(scene.dataset);
     auto context = createHeadlessContext(parseHeadlessBackend(args.get("gl").value_or("auto")));
-    RenderEngine engine;
+    RenderEngine engine(args.get("implementation").value_or(""));
     engine.setVolume(volume);
     CameraSpec& cam = scene.camera;
     std::vector<double> ms;
@@ -101,14 +124,25 @@ int benchCommand(int argc, char** argv) {
         const double elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         if (f < warmup) continue;
         ms.push_back(elapsed);
-        if (!renderer.objectOrder()) samples += samplesPerFrame(volume, scene);
+        if (counted) samples += samplesPerFrame(volume, scene);
     }
+    // One more frame, untimed, at the last view: the samples the shaders
+    // actually took (with skipping and early termination), counted on the GPU.
+    double taken = 0.0;
+    if (counted) {
+        taken = engine.countSamples(scene);
+        if (auto path = args.get("sample-map")) saveSampleMap(engine.readBack(), *path);
+    } else if (args.get("sample-map")) {
+        throw Error("option --sample-map: only ray-casting renderers without a cutting plane take samples");
+    }
+    const double full = counted ? samplesPerFrame(volume, scene) : 0.0;
+    const double skipped = full > 0.0 ? 1.0 - taken / full : 0.0;
     double totalMs = 0.0;
     for (double t : ms) totalMs += t;
     const double median = percentile(ms, 50.0), q1 = percentile(ms, 25.0), q3 = percentile(ms, 75.0);
     const double lowest = *std::min_element(ms.begin(), ms.end()), highest = *std::max_element(ms.begin(), ms.end());
-    const bool counted = !renderer.objectOrder();
     const double samplesPerSecond = counted && totalMs > 0 ? samples / (totalMs / 1000.0) : 0.0;
+    const std::string skipping = scene.skipEmptySpace ? "on" : "off";
     if (args.has("json")) {
         nlohmann::json j = {{"dataset", scene.dataset},   {"renderer", scene.renderer},
                             {"width", scene.width},       {"height", scene.height},
@@ -116,25 +150,30 @@ int benchCommand(int argc, char** argv) {
                             {"ms_per_frame", ms},         {"median_ms", median},
                             {"q1_ms", q1},                {"q3_ms", q3},
                             {"min_ms", lowest},           {"max_ms", highest},
-                            {"gl", context->description()}};
+                            {"gl", context->description()},
+                            {"interpolation", interpolationName(scene.interpolation)},
+                            {"skip_empty_space", scene.skipEmptySpace}};
         if (counted) {
             j["samples_per_frame"] = samples / frames;
             j["samples_per_second"] = samplesPerSecond;
+            j["samples_taken"] = taken;
+            j["skipped_fraction"] = skipped;
         }
-        // No empty-space skipping yet: every sample counted is taken.
-        j["skipped_fraction"] = 0.0;
         std::cout << j.dump(2) << "\n";
         return 0;
     }
-    std::printf("%s, %s, %dx%d, step %g, %d frames (after %d warm-up), camera turning %g deg a frame\n",
-                volume.name().c_str(), scene.renderer.c_str(), scene.width, scene.height, scene.step, frames, warmup,
-                turn);
+    std::printf("%s, %s, %dx%d, step %g, %s interpolation, empty-space skipping %s, %d frames (after %d warm-up), "
+                "camera turning %g deg a frame\n",
+                volume.name().c_str(), scene.renderer.c_str(), scene.width, scene.height, scene.step,
+                interpolationName(scene.interpolation), skipping.c_str(), frames, warmup, turn);
     std::printf("gl: %s\n", context->description().c_str());
     std::printf("ms/frame: median %.1f (quartiles %.1f .. %.1f, min %.1f, max %.1f); %.2f frames/s\n", median, q1, q3,
                 lowest, highest, median > 0 ? 1000.0 / median : 0.0);
-    if (counted)
-        std::printf("samples: %.3g a frame, %.3g a second; skipped: 0%% (no empty-space skipping)\n", samples / frames,
-                    samplesPerSecond);
+    if (counted) {
+        std::printf("samples: %.3g a frame by the sampling rule, %.3g a second\n", samples / frames, samplesPerSecond);
+        std::printf("skipped: %.1f%% of them (%.3g taken; empty space and early termination)\n", 100.0 * skipped,
+                    taken);
+    }
     return 0;
 }
 

@@ -22,6 +22,7 @@ std::vector<OptionSpec> sceneOptions() {
         {"size", "WxH", "image size in pixels"},
         {"step", "S", "sample spacing along rays, in units of the smallest voxel spacing"},
         {"interpolation", "I", "nearest, trilinear (in the shader) or hardware (GPU filtering)"},
+        {"skip-empty-space", "on|off", "leap over bricks that cannot change the image (default on)"},
         {"window", "LO,HI", "grey window in data units (default: the data's min,max)"},
         {"tf", "FILE", "1D transfer function (JSON control points)"},
         {"background", "R,G,B", "background colour, 0..1 each"},
@@ -119,6 +120,10 @@ Scene sceneFromArgs(const Args& args, const std::string& command, const Scene* b
             throw Error("option --step: must be in (0, " + std::to_string(int(kMaxStep)) + "]");
     }
     if (auto v = args.get("interpolation")) scene.interpolation = parseInterpolation(*v);
+    if (auto v = args.get("skip-empty-space")) {
+        if (*v != "on" && *v != "off") throw Error("option --skip-empty-space: expected on or off, got '" + *v + "'");
+        scene.skipEmptySpace = *v == "on";
+    }
     if (auto v = args.get("window")) {
         const auto w = parseNumberList(*v, "--window", 2);
         if (!(w[1] > w[0])) throw Error("option --window: HI must be greater than LO");

@@ -15,7 +15,9 @@ out vec4 frag_color;
 void main() {
     Ray ray = camera_ray();
     float t, value;
-    if (!clip_to_volume(ray) || !first_hit(ray, t, value)) {
+    bool inside = clip_to_volume(ray);
+    if (inside) skip_empty_ends(ray);
+    if (!inside || !first_hit(ray, t, value)) {
         frag_color = nothing();
         return;
     }

@@ -18,7 +18,9 @@ out vec4 frag_color;
 void main() {
     Ray ray = camera_ray();
     float t;
-    if (!clip_to_volume(ray) || !iso_hit(ray, t)) {
+    bool inside = clip_to_volume(ray);
+    if (inside) skip_empty_ends(ray);
+    if (!inside || !iso_hit(ray, t)) {
         frag_color = nothing();
         return;
     }

@@ -27,5 +27,6 @@ void main() {
         return;
     }
     if (u_jitter != 0) jitter_start(ray);
+    skip_empty_ends(ray);
     frag_color = finish(u_back_to_front != 0 ? composite_back_to_front(ray) : composite_front_to_back(ray));
 }

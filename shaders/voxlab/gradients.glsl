@@ -21,7 +21,7 @@ uniform int u_precomputed_gradients;
 uniform sampler3D u_gradient_volume;
 
 vec3 gradient_at(vec3 p) {
-    if (u_precomputed_gradients != 0) return texture(u_gradient_volume, p / u_volume_extent).xyz;
+    if (u_precomputed_gradients != 0) return textureLod(u_gradient_volume, p / u_volume_extent, 0.0).xyz;
     return u_sobel != 0 ? gradient_sobel(p) : gradient_central(p);
 }
 

@@ -10,11 +10,13 @@
 #define VOXLAB_OUTPUT_GLSL
 
 #include "voxlab/not_implemented.glsl"
+#include "voxlab/sample_counter.glsl"
 
 uniform vec3 u_background;
 uniform int u_layer;
 
 vec4 finish(vec4 premultiplied) {
+    if (u_count_samples != 0) return vec4(float(voxlab_samples_taken), 0.0, 0.0, 1.0);
     if (voxlab_not_implemented) return not_implemented_pattern();
     if (u_layer != 0) return premultiplied;
     return vec4(premultiplied.rgb + (1.0 - premultiplied.a) * u_background, 1.0);

@@ -14,6 +14,7 @@
 #define VOXLAB_RAY_GLSL
 
 #include "voxlab/volume.glsl"
+#include "voxlab/sample_counter.glsl"
 
 uniform vec3 u_cam_position;
 uniform vec3 u_cam_forward;
@@ -95,6 +96,7 @@ int sample_count(Ray ray) {
 
 // The world position of sample m.
 vec3 sample_position(Ray ray, int m) {
+    if (u_count_samples != 0) voxlab_samples_taken += 1;
     return ray.origin + (ray.t_entry + (float(m) + 0.5) * u_step) * ray.direction;
 }
 
@@ -121,5 +123,7 @@ float depth_grey(Ray ray, float t) {
     float t_near = dot(centre - ray.origin, ray.direction) - radius;
     return clamp(1.0 - (t - t_near) / (2.0 * radius), 0.0, 1.0);
 }
+
+#include "voxlab/empty_space.glsl"
 
 #endif

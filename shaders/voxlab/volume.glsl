@@ -40,7 +40,7 @@ vec3 voxel_coordinates(vec3 p) {
 float sample_volume(vec3 p) {
     if (u_interpolation == 0) return sample_nearest(p);
     if (u_interpolation == 1) return sample_trilinear(p);
-    return texture(u_volume, p / u_volume_extent).r * u_value_scale + u_value_offset;
+    return textureLod(u_volume, p / u_volume_extent, 0.0).r * u_value_scale + u_value_offset;
 }
 
 bool inside_volume(vec3 p) {

@@ -9,8 +9,9 @@
 //   u_step (world units), u_step_units (in smallest spacings), u_window,
 //   u_tf, u_tf_range, u_tf_size, u_has_tf, u_background, u_value_range,
 //   u_interpolation, u_roi_min/max, u_clip_plane/point/normal, u_layer,
-//   u_gradient_volume, u_tf2d_*, and u_PARAM for each declared renderer
-//   parameter.
+//   u_gradient_volume, u_tf2d_*, u_bricks, u_brick_extent, u_brick_count
+//   (empty-space skipping, see empty_space.h), and u_PARAM for each declared
+//   renderer parameter.
 //
 // A scene with a cutting plane is drawn in three passes: the scene's
 // renderer on the normal's side and the other side's renderer on the other,
@@ -30,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "voxlab/empty_space.h"
 #include "voxlab/image.h"
 #include "voxlab/renderer.h"
 #include "voxlab/scene.h"
@@ -80,6 +82,16 @@ public:
     unsigned offscreenTexture() const { return colorTexture_; }
     const std::string& implementationRoot() const { return implementationRoot_; }
 
+    // The samples `scene` takes in all, summed over its pixels: the scene is
+    // rendered once with every sample_position() counted (see
+    // shaders/voxlab/sample_counter.glsl), with skipping and early
+    // termination as the scene has them. Ray-casting renderers only, no
+    // cutting plane; the image in the offscreen target is the counts.
+    double countSamples(const Scene& scene);
+    // The brick grid of the current volume (built on the first render that
+    // skips empty space), or null.
+    const BrickGrid* brickGrid() const { return bricks_.get(); }
+
 private:
     // One transfer-function table on the GPU and what it was baked from.
     struct TransferFunctionSlot {
@@ -111,6 +123,11 @@ private:
     void uploadGradients(GradientEstimator estimator);
     void ensureTarget(int width, int height);
     void ensureLayers(int width, int height);
+    // Empty-space skipping (render_engine_bricks.cpp): builds the brick grid
+    // once per volume, marks the bricks `rule` lets rays skip, and binds the
+    // result for the shaders.
+    void bindBricks(const ShaderProgram& prog, const EmptySpaceRule& rule, const TransferFunctionTable* table,
+                    const std::vector<Tf2dWidget>& widgets);
 
     std::string implementationRoot_;
     ShaderLibrary library_;
@@ -134,6 +151,13 @@ private:
     unsigned geometryVao_ = 0, geometryVbo_ = 0;
     unsigned sliceStacks_[3] = {0, 0, 0};
     unsigned long sliceStackGeneration_[3] = {0, 0, 0};
+    // Empty-space skipping: the grid, the volume it belongs to, and its
+    // texture (min, max, visible, 0 per brick) as last uploaded.
+    std::unique_ptr<BrickGrid> bricks_;
+    unsigned long bricksGeneration_ = 0;
+    unsigned brickTexture_ = 0;
+    std::vector<glm::vec4> brickTexels_;
+    bool countingSamples_ = false;
 };
 
 }  // namespace voxlab

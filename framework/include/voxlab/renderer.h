@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "voxlab/empty_space.h"
 #include "voxlab/gradients.h"
 #include "voxlab/scene.h"
 
@@ -105,6 +106,9 @@ public:
     // the shared parameters `precomputed_gradients` and `sobel` get it when
     // `precomputed_gradients` is on; others never do.
     std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const;
+    // Which bricks of the volume these parameter values let the renderer's
+    // rays skip (see empty_space.h); the default skips none.
+    virtual EmptySpaceRule emptySpaceRule(const ParameterValues& values) const;
 
     // Checks `given` against the declared parameters (unknown name, out of
     // range, not an integer, not a bool) and fills in defaults. Errors name

@@ -37,6 +37,7 @@ public:
     std::string id() const override;
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
+    EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
 };
 
 class SlabMipRenderer final : public Renderer {
@@ -52,6 +53,7 @@ public:
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
     bool needsTransferFunction() const override { return true; }
+    EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
 };
 
 class IsoRenderer final : public Renderer {
@@ -59,6 +61,7 @@ public:
     std::string id() const override;
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
+    EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
 };
 
 class Tf2dRenderer final : public Renderer {
@@ -67,6 +70,7 @@ public:
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
     bool needsTransferFunction2D() const override { return true; }
+    EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
 };
 
 // Object-order renderers: they draw proxy geometry (draw()) instead of

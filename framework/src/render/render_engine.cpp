@@ -90,6 +90,7 @@ RenderEngine::~RenderEngine() {
         if (t) glDeleteTextures(1, &t);
     if (geometryVao_) glDeleteVertexArrays(1, &geometryVao_);
     if (geometryVbo_) glDeleteBuffers(1, &geometryVbo_);
+    if (brickTexture_) glDeleteTextures(1, &brickTexture_);
 }
 
 void RenderEngine::setVolume(const Volume& volume) {
@@ -316,10 +317,13 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     // Switches are baked into the program (see ShaderConstants): the
     // interpolation, whether there is a transfer function, the pass's kind,
     // and every bool parameter.
+    const bool skipping = scene.skipEmptySpace && !renderer.objectOrder();
     ShaderConstants constants = {{"u_interpolation", int(scene.interpolation)},
                                  {"u_has_tf", tf ? 1 : 0},
                                  {"u_layer", pass.layer ? 1 : 0},
-                                 {"u_clip_plane", pass.clip ? 1 : 0}};
+                                 {"u_clip_plane", pass.clip ? 1 : 0},
+                                 {"u_skipping", skipping ? 1 : 0},
+                                 {"u_count_samples", countingSamples_ ? 1 : 0}};
     for (const ParameterSpec& p : renderer.parameters())
         if (p.type == ParameterType::Bool) constants["u_" + p.name] = pass.values.at(p.name) != 0.0 ? 1 : 0;
     const ShaderProgram& prog = program(renderer.vertexShader(), renderer.fragmentShader(), constants);
@@ -365,6 +369,8 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
                      : glm::vec4(w.valueRange.x, w.radius, 0.0, 0.0));
         prog.set(("u_tf2d_color" + index).c_str(), glm::vec4(w.color, w.alpha));
     }
+
+    if (skipping) bindBricks(prog, renderer.emptySpaceRule(pass.values), tf ? &slot.table : nullptr, widgets);
 
     renderer.setUniforms(prog, pass.values);
 
@@ -492,6 +498,24 @@ void RenderEngine::renderOffscreen(const Scene& scene) {
 Image RenderEngine::render(const Scene& scene) {
     renderOffscreen(scene);
     return readBack();
+}
+
+double RenderEngine::countSamples(const Scene& scene) {
+    if (scene.cuttingPlane) throw Error("counting samples: scenes with a cutting plane are not supported");
+    if (rendererRegistry().get(scene.renderer).objectOrder())
+        throw Error("counting samples: '" + scene.renderer + "' draws slices, it does not take samples along rays");
+    countingSamples_ = true;
+    try {
+        renderOffscreen(scene);
+    } catch (...) {
+        countingSamples_ = false;
+        throw;
+    }
+    countingSamples_ = false;
+    const Image counts = readBack();
+    double total = 0.0;
+    for (std::size_t i = 0; i < counts.rgba.size(); i += 4) total += counts.rgba[i];
+    return total;
 }
 
 Image RenderEngine::readBack() const {

@@ -52,6 +52,8 @@ std::optional<GradientEstimator> Renderer::precomputedGradients(const ParameterV
     return on("sobel") ? GradientEstimator::Sobel : GradientEstimator::Central;
 }
 
+EmptySpaceRule Renderer::emptySpaceRule(const ParameterValues&) const { return {}; }
+
 ParameterValues Renderer::resolveParameters(const ParameterValues& given,
                                             std::optional<glm::dvec2> dataRange) const {
     const std::vector<ParameterSpec> specs = dataRange ? parametersFor(*dataRange) : parameters();

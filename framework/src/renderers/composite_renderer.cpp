@@ -18,4 +18,8 @@ std::vector<ParameterSpec> CompositeRenderer::parameters() const {
     return p;
 }
 
+EmptySpaceRule CompositeRenderer::emptySpaceRule(const ParameterValues&) const {
+    return {EmptySpaceRule::Kind::TransferFunction};
+}
+
 }  // namespace voxlab

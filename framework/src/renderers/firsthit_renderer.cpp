@@ -17,4 +17,9 @@ std::vector<ParameterSpec> FirstHitRenderer::parameters() const {
             {"depth", ParameterType::Bool, 0, 1, 0, "show the hit's depth (near white, far black) instead of its value"}};
 }
 
+EmptySpaceRule FirstHitRenderer::emptySpaceRule(const ParameterValues& values) const {
+    // Nothing below the threshold can be the first hit.
+    return {EmptySpaceRule::Kind::AtLeast, values.at("threshold")};
+}
+
 }  // namespace voxlab

@@ -25,4 +25,9 @@ std::vector<ParameterSpec> IsoRenderer::parameters() const {
     return p;
 }
 
+EmptySpaceRule IsoRenderer::emptySpaceRule(const ParameterValues& values) const {
+    // A ray can only meet the surface where some value reaches the isovalue.
+    return {EmptySpaceRule::Kind::AtLeast, values.at("isovalue")};
+}
+
 }  // namespace voxlab

@@ -16,4 +16,8 @@ std::vector<ParameterSpec> Tf2dRenderer::parameters() const {
     return p;
 }
 
+EmptySpaceRule Tf2dRenderer::emptySpaceRule(const ParameterValues&) const {
+    return {EmptySpaceRule::Kind::TransferFunction2D};
+}
+
 }  // namespace voxlab

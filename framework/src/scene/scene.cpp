@@ -209,8 +209,9 @@ Scene Parser::parse(const json& j) const {
 
     if (j.contains("sampling")) {
         const json& sampling = j["sampling"];
-        if (!sampling.is_object()) fail("sampling", "expected an object {\"step\", \"interpolation\"}");
-        onlyKeys(sampling, "sampling", {"step", "interpolation"});
+        if (!sampling.is_object())
+            fail("sampling", "expected an object {\"step\", \"interpolation\", \"skip_empty_space\"}");
+        onlyKeys(sampling, "sampling", {"step", "interpolation", "skip_empty_space"});
         if (sampling.contains("step")) {
             s.step = number(sampling["step"], "sampling.step");
             if (s.step <= 0.0 || s.step > kMaxStep)
@@ -219,6 +220,10 @@ Scene Parser::parse(const json& j) const {
         if (sampling.contains("interpolation")) {
             const std::string name = string(sampling["interpolation"], "sampling.interpolation");
             s.interpolation = located("sampling.interpolation", [&] { return parseInterpolation(name); });
+        }
+        if (sampling.contains("skip_empty_space")) {
+            if (!sampling["skip_empty_space"].is_boolean()) fail("sampling.skip_empty_space", "expected true or false");
+            s.skipEmptySpace = sampling["skip_empty_space"].get<bool>();
         }
     }
 
@@ -288,6 +293,7 @@ json Scene::toJson() const {
     j["projection"] = projectionName(camera.projection);
     j["size"] = {width, height};
     j["sampling"] = {{"step", step}, {"interpolation", interpolationName(interpolation)}};
+    if (!skipEmptySpace) j["sampling"]["skip_empty_space"] = false;  // on unless said
     if (window) j["window"] = {window->x, window->y};
     j["background"] = {shortFloat(background.r), shortFloat(background.g), shortFloat(background.b)};
     j["parameters"] = json::object();

@@ -113,6 +113,10 @@ void techniquePanel(State& s) {
     int interp = int(s.scene.interpolation);
     if (ImGui::Combo("interpolation", &interp, "nearest\0trilinear\0hardware\0"))
         s.scene.interpolation = Interpolation(interp), s.dirty = true;
+    if (ImGui::Checkbox("skip empty space", &s.scene.skipEmptySpace)) s.dirty = true;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Leap over bricks the transfer function hides (same image, fewer samples;\n"
+                          "see docs/performance.md). Turn off to compare frame times.");
     glm::dvec2 w = s.scene.window.value_or(volume.valueRange());
     float lo = float(w.x), hi = float(w.y);
     const float speed = float((volume.maxValue() - volume.minValue()) / 500.0 + 1e-6);

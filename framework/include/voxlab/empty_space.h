@@ -1,0 +1,102 @@
+// voxlab: empty-space skipping (the CPU side).
+//
+// Most of a CT or MRI box is air that the transfer function hides, yet a
+// plain ray caster samples it as carefully as the object. Empty-space
+// skipping cuts the volume into bricks (kBrickSize voxels a side) and keeps,
+// for each brick, the smallest and largest value that any sample inside it
+// can read. When the transfer function (or the isovalue, or the threshold)
+// changes, each brick is marked visible or empty from that range alone: a
+// brick whose whole range maps to zero opacity can contribute nothing, so a
+// ray may leap from where it enters the brick to where it leaves it. For
+// MIP the range itself is the test: a brick whose largest value cannot
+// raise the ray's running maximum is passed over.
+//
+// What "can read" means. A trilinear sample at voxel coordinate u reads the
+// voxels floor(u - 1/2) and floor(u - 1/2) + 1 on each axis, so a sample in
+// brick b (u in [bB, (b+1)B)) reads voxels bB - 1 .. (b+1)B: the range
+// covers the brick and an apron of one voxel around it, clamped to the grid
+// (nearest and the GPU's filtering read no further). That is all a value
+// test needs, shading included: a sample whose value has zero opacity adds
+// nothing, whatever its gradient. Only the 2D transfer function classifies
+// by the gradient, which reads one voxel further; it takes its ranges from
+// the brick and its 26 neighbours (visibleBricks, 2D).
+//
+// The GLSL side (shaders/voxlab/empty_space.glsl) walks rays brick by brick
+// with these flags; the render engine rebuilds the ranges once per volume
+// and the flags whenever the classification changes (RenderEngine::draw).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "voxlab/transfer_function.h"
+#include "voxlab/transfer_function_2d.h"
+
+namespace voxlab {
+
+class Volume;
+
+// Voxels along each edge of a brick. Smaller bricks fit the object more
+// tightly; larger ones let rays cross empty space in fewer leaps. See
+// docs/performance.md for the measurements behind 8.
+constexpr int kBrickSize = 8;
+
+// Voxels around a brick whose values its samples can read.
+constexpr int kBrickApron = 1;
+
+struct BrickGrid {
+    int brickSize = kBrickSize;
+    glm::ivec3 count{0};          // bricks along each axis (the last may be partial)
+    std::vector<glm::vec2> range;  // per brick, x fastest: (smallest, largest) value, data units
+
+    // Builds the grid of a volume: one pass over its voxels per brick row.
+    static BrickGrid build(const Volume& volume, int brickSize = kBrickSize);
+
+    std::size_t brickCount() const { return range.size(); }
+    std::size_t index(glm::ivec3 brick) const {
+        return (std::size_t(brick.z) * std::size_t(count.y) + std::size_t(brick.y)) * std::size_t(count.x) +
+               std::size_t(brick.x);
+    }
+    // The brick that holds continuous voxel coordinate u (clamped to the grid).
+    glm::ivec3 brickAt(glm::dvec3 voxelCoordinate) const;
+};
+
+// Which bricks a renderer may skip: its rule, chosen by
+// Renderer::emptySpaceRule() from its parameters.
+struct EmptySpaceRule {
+    enum class Kind {
+        None,                // every brick may contribute (MIP, average, ...)
+        TransferFunction,    // visible where the 1D transfer function's opacity can be > 0
+        TransferFunction2D,  // the same for the 2D transfer function
+        AtLeast,             // visible where a value >= threshold can occur (isosurface, first hit)
+    };
+    Kind kind = Kind::None;
+    double threshold = 0.0;  // AtLeast: data units
+};
+
+// One byte per brick, 1 where the brick may contribute.
+//
+// TransferFunction: the table is read by linear interpolation between
+// entries (classify.glsl), so values in [lo, hi] touch the entries from
+// floor(x(lo)) to floor(x(hi)) + 1; the brick is visible when any of those
+// has opacity > 0.
+std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const TransferFunctionTable& table);
+
+// TransferFunction2D: with [lo, hi] the range over the brick and its
+// neighbours (every value a sample or its gradient reads), a box widget
+// needs its value interval to meet [lo, hi]; Levoy's triangle (value v0,
+// radius r) is non-zero where |v - v0| <= r |g|, and every gradient estimate
+// is at most 2 sqrt(3) (hi - lo) in units of data per smallest spacing (a
+// difference of two values in [lo, hi] over at least half a voxel, on each
+// of three axes).
+std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const std::vector<Tf2dWidget>& widgets);
+
+// AtLeast: visible where the brick's largest value reaches the threshold.
+std::vector<std::uint8_t> bricksReaching(const BrickGrid& grid, double threshold);
+
+// All ones: nothing may be skipped.
+std::vector<std::uint8_t> allBricksVisible(const BrickGrid& grid);
+
+}  // namespace voxlab

@@ -1,0 +1,162 @@
+// voxlab: empty-space skipping, the CPU side (see empty_space.h).
+#include "voxlab/empty_space.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "voxlab/volume.h"
+
+namespace voxlab {
+namespace {
+
+// The ranges, one layer of bricks (along z) at a time. First each voxel row
+// of the layer (with its apron) is reduced to one (min, max) per brick
+// column, then each brick combines the rows it covers. Every voxel is read
+// about (B + 2A) / B times, and only one layer's rows are held at once
+// (a few MiB for a 512^3 volume).
+template <class T>
+void fillRanges(const std::uint8_t* bytes, glm::ivec3 dims, BrickGrid* grid) {
+    const int b = grid->brickSize, apron = kBrickApron;
+    const glm::ivec3 count = grid->count;
+    const auto voxel = [&](std::size_t index) {
+        T v;
+        std::memcpy(&v, bytes + index * sizeof(T), sizeof(T));
+        return float(v);
+    };
+    const auto first = [&](int brick) { return std::max(brick * b - apron, 0); };
+    const auto last = [&](int brick, int n) { return std::min((brick + 1) * b + apron, n); };  // exclusive
+    std::vector<glm::vec2> rows(std::size_t(b + 2 * apron) * std::size_t(dims.y) * std::size_t(count.x));
+    for (int bz = 0; bz < count.z; ++bz) {
+        const int z0 = first(bz), z1 = last(bz, dims.z);
+        for (int z = z0; z < z1; ++z)
+            for (int y = 0; y < dims.y; ++y) {
+                const std::size_t row = (std::size_t(z) * std::size_t(dims.y) + std::size_t(y)) * std::size_t(dims.x);
+                for (int bx = 0; bx < count.x; ++bx) {
+                    glm::vec2 r(voxel(row + std::size_t(first(bx))));
+                    for (int x = first(bx) + 1; x < last(bx, dims.x); ++x) {
+                        const float v = voxel(row + std::size_t(x));
+                        r = glm::vec2(std::min(r.x, v), std::max(r.y, v));
+                    }
+                    rows[(std::size_t(z - z0) * std::size_t(dims.y) + std::size_t(y)) * std::size_t(count.x) +
+                         std::size_t(bx)] = r;
+                }
+            }
+        for (int by = 0; by < count.y; ++by)
+            for (int bx = 0; bx < count.x; ++bx) {
+                glm::vec2 r(INFINITY, -INFINITY);
+                for (int z = z0; z < z1; ++z)
+                    for (int y = first(by); y < last(by, dims.y); ++y) {
+                        const glm::vec2 q = rows[(std::size_t(z - z0) * std::size_t(dims.y) + std::size_t(y)) *
+                                                     std::size_t(count.x) +
+                                                 std::size_t(bx)];
+                        r = glm::vec2(std::min(r.x, q.x), std::max(r.y, q.y));
+                    }
+                grid->range[grid->index({bx, by, bz})] = r;
+            }
+    }
+}
+
+// The range over brick i and its 26 neighbours: it covers every voxel two
+// voxels around brick i (the bricks are at least one voxel wide).
+glm::vec2 neighbourhoodRange(const BrickGrid& grid, std::size_t i) {
+    const glm::ivec3 b(int(i % std::size_t(grid.count.x)), int(i / std::size_t(grid.count.x) % std::size_t(grid.count.y)),
+                       int(i / (std::size_t(grid.count.x) * std::size_t(grid.count.y))));
+    const glm::ivec3 from = glm::max(b - 1, glm::ivec3(0)), to = glm::min(b + 1, grid.count - 1);
+    glm::vec2 r(INFINITY, -INFINITY);
+    for (int z = from.z; z <= to.z; ++z)
+        for (int y = from.y; y <= to.y; ++y)
+            for (int x = from.x; x <= to.x; ++x) {
+                const glm::vec2 q = grid.range[grid.index({x, y, z})];
+                r = glm::vec2(std::min(r.x, q.x), std::max(r.y, q.y));
+            }
+    return r;
+}
+
+}  // namespace
+
+BrickGrid BrickGrid::build(const Volume& volume, int brickSize) {
+    BrickGrid grid;
+    grid.brickSize = std::max(brickSize, 1);
+    const glm::ivec3 dims = volume.dims();
+    grid.count = (dims + grid.brickSize - 1) / grid.brickSize;
+    grid.range.resize(std::size_t(grid.count.x) * std::size_t(grid.count.y) * std::size_t(grid.count.z));
+    const std::uint8_t* bytes = volume.bytes().data();
+    switch (volume.type()) {
+        case VoxelType::UInt8: fillRanges<std::uint8_t>(bytes, dims, &grid); break;
+        case VoxelType::UInt16: fillRanges<std::uint16_t>(bytes, dims, &grid); break;
+        case VoxelType::Int16: fillRanges<std::int16_t>(bytes, dims, &grid); break;
+        case VoxelType::Float32: fillRanges<float>(bytes, dims, &grid); break;
+    }
+    return grid;
+}
+
+glm::ivec3 BrickGrid::brickAt(glm::dvec3 voxelCoordinate) const {
+    const glm::ivec3 b(glm::floor(voxelCoordinate / double(brickSize)));
+    return glm::clamp(b, glm::ivec3(0), count - 1);
+}
+
+std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const TransferFunctionTable& table) {
+    const int size = table.size;
+    if (size < 2) return std::vector<std::uint8_t>(grid.brickCount(), size == 1 && table.rgba[0].a > 0.0f);
+    // opaqueBefore[i]: how many of the entries 0..i-1 have opacity > 0.
+    std::vector<int> opaqueBefore(std::size_t(size) + 1, 0);
+    for (int i = 0; i < size; ++i) opaqueBefore[i + 1] = opaqueBefore[i] + (table.rgba[i].a > 0.0f ? 1 : 0);
+    // The entry below value v, as classify.glsl finds it (floor of x, at
+    // most size - 2; its right neighbour is read too).
+    const double width = std::max(table.hi - table.lo, 1e-30);
+    const auto entry = [&](double v) {
+        const double x = std::clamp((v - table.lo) / width, 0.0, 1.0) * double(size - 1);
+        return std::min(int(x), size - 2);
+    };
+    std::vector<std::uint8_t> visible(grid.brickCount());
+    for (std::size_t i = 0; i < visible.size(); ++i) {
+        // One entry of slack on each side: the shader computes x in float.
+        const int from = std::max(entry(grid.range[i].x) - 1, 0);
+        const int to = std::min(entry(grid.range[i].y) + 2, size - 1);
+        visible[i] = opaqueBefore[to + 1] - opaqueBefore[from] > 0;
+    }
+    return visible;
+}
+
+std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const std::vector<Tf2dWidget>& widgets) {
+    std::vector<std::uint8_t> visible(grid.brickCount(), 0);
+    for (std::size_t i = 0; i < visible.size(); ++i) {
+        const glm::vec2 range = neighbourhoodRange(grid, i);
+        const double lo = range.x, hi = range.y;
+        // The largest gradient magnitude a sample here can see, with a
+        // little slack for float rounding in a flat brick.
+        const double gradientBound = 2.0 * std::sqrt(3.0) * (hi - lo) + 1e-5 * (std::abs(lo) + std::abs(hi) + 1.0);
+        for (const Tf2dWidget& w : widgets) {
+            if (!(w.alpha > 0.0f)) continue;
+            bool reaches;
+            if (w.kind == Tf2dWidget::Kind::Box) {
+                reaches = w.valueRange.x <= hi && w.valueRange.y >= lo && w.gradientRange.x <= gradientBound &&
+                          w.gradientRange.y >= 0.0;
+            } else {
+                const double distance = std::max({0.0, lo - w.valueRange.x, w.valueRange.x - hi});
+                reaches = distance <= w.radius * gradientBound;
+            }
+            if (reaches) {
+                visible[i] = 1;
+                break;
+            }
+        }
+    }
+    return visible;
+}
+
+std::vector<std::uint8_t> bricksReaching(const BrickGrid& grid, double threshold) {
+    std::vector<std::uint8_t> visible(grid.brickCount());
+    // The shader reads values as texel * scale + offset in float, which can
+    // land an ulp or so above the stored value: a little slack below.
+    const double t = threshold - 1e-5 * (std::abs(threshold) + 1.0);
+    for (std::size_t i = 0; i < visible.size(); ++i) visible[i] = double(grid.range[i].y) >= t;
+    return visible;
+}
+
+std::vector<std::uint8_t> allBricksVisible(const BrickGrid& grid) {
+    return std::vector<std::uint8_t>(grid.brickCount(), 1);
+}
+
+}  // namespace voxlab

@@ -53,12 +53,6 @@ vec2 brick_span(Ray ray, ivec3 b) {
     return vec2(max(max(near.x, near.y), near.z), min(min(far.x, far.y), far.z));
 }
 
-// The stretch of this fragment's ray (as distances t) that lies in the
-// brick most recently found to count: samples there are taken without
-// looking the brick up again. A global, so it lasts from one call to the
-// next; every ray of one fragment runs along the same line.
-vec2 voxlab_counted_span = vec2(0.0, -1.0);
-
 bool brick_counts(ivec3 b, int test, float value) {
     vec4 brick = texelFetch(u_bricks, b, 0);
     if (test == VOXLAB_BRICK_ABOVE) return brick.g > value;
@@ -70,16 +64,11 @@ int skip_forward(Ray ray, int m, int test, float value) {
     if (u_skipping == 0) return m;
     int n = sample_count(ray);
     while (m < n) {
-        float t = ray.t_entry + (float(m) + 0.5) * u_step;
-        if (t >= voxlab_counted_span.x && t < voxlab_counted_span.y) return m;
-        ivec3 b = brick_at(ray.origin + t * ray.direction);
-        vec2 span = brick_span(ray, b);
-        if (brick_counts(b, test, value)) {
-            voxlab_counted_span = span;
-            return m;
-        }
+        ivec3 b = brick_at(ray.origin + (ray.t_entry + (float(m) + 0.5) * u_step) * ray.direction);
+        if (brick_counts(b, test, value)) return m;
         // The first sample at or past the exit: t_entry + (k + 1/2) step >= t.
-        m = max(m + 1, int(ceil((span.y - ray.t_entry) / u_step - 0.5)));
+        float t = brick_span(ray, b).y;
+        m = max(m + 1, int(ceil((t - ray.t_entry) / u_step - 0.5)));
     }
     return n;
 }

@@ -257,6 +257,23 @@ TEST_F(Cli, BenchTimesFramesAndCountsSamples) {
                                          "--size 32x32 --step 0.5 --turn 0 --frames 1 --warmup 0 --json");
     ASSERT_EQ(half.exitCode, 0) << half.err;
     EXPECT_DOUBLE_EQ(nlohmann::json::parse(half.out)["samples_per_frame"].get<double>(), 64.0 * 32.0 * 32.0);
+    // Samples taken, counted on the GPU: the average reads every sample; compositing skips the
+    // air around the sphere (the fallback ramp gives value 0 no opacity; at 64^3 the corner
+    // bricks hold only air), and the sample map
+    // shows it.
+    const CommandResult average = runVoxlab("bench --dataset phantom:sphere:32 --renderer average --view +z "
+                                            "--size 32x32 --step 1 --frames 1 --warmup 0 --json");
+    ASSERT_EQ(average.exitCode, 0) << average.err;
+    const nlohmann::json a = nlohmann::json::parse(average.out);
+    EXPECT_EQ(a["samples_taken"].get<double>(), a["samples_per_frame"].get<double>());
+    EXPECT_EQ(a["skipped_fraction"].get<double>(), 0.0);
+    const std::string map = path("samples.png");
+    const CommandResult composite = runVoxlab("bench --dataset phantom:sphere:64 --renderer composite --view +z "
+                                              "--size 32x32 --step 1 --frames 1 --warmup 0 --json --sample-map " +
+                                              map);
+    ASSERT_EQ(composite.exitCode, 0) << composite.err;
+    EXPECT_GT(nlohmann::json::parse(composite.out)["skipped_fraction"].get<double>(), 0.3);
+    EXPECT_EQ(loadPng(map).width, 32);
     const CommandResult bad = runVoxlab("bench --dataset phantom:sphere:32 --frames 0");
     EXPECT_NE(bad.exitCode, 0);
     EXPECT_NE(bad.err.find("--frames"), std::string::npos) << bad.err;

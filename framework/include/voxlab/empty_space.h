@@ -79,8 +79,8 @@ struct EmptySpaceRule {
 // One byte per brick, 1 where the brick may contribute.
 //
 // TransferFunction: the table is read by linear interpolation between
-// entries (classify.glsl), so values in [lo, hi] touch the entries from
-// floor(x(lo)) to floor(x(hi)) + 1; the brick is visible when any of those
+// entries (classify.glsl), so values in [lo, hi] give weight to the entries
+// from floor(x(lo)) to ceil(x(hi)); the brick is visible when any of those
 // has opacity > 0.
 std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const TransferFunctionTable& table);
 

@@ -102,18 +102,16 @@ std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const TransferFun
     // opaqueBefore[i]: how many of the entries 0..i-1 have opacity > 0.
     std::vector<int> opaqueBefore(std::size_t(size) + 1, 0);
     for (int i = 0; i < size; ++i) opaqueBefore[i + 1] = opaqueBefore[i] + (table.rgba[i].a > 0.0f ? 1 : 0);
-    // The entry below value v, as classify.glsl finds it (floor of x, at
-    // most size - 2; its right neighbour is read too).
+    // classify.glsl reads the two entries around x = (v - lo) / (hi - lo) * (size - 1),
+    // weighted by how close x is to each: entries floor(x) .. ceil(x) carry weight. The
+    // shader computes x in float, a few ulps off: the relative slack covers that, and x = 0
+    // (the table's first value, often the air) stays exactly on entry 0.
     const double width = std::max(table.hi - table.lo, 1e-30);
-    const auto entry = [&](double v) {
-        const double x = std::clamp((v - table.lo) / width, 0.0, 1.0) * double(size - 1);
-        return std::min(int(x), size - 2);
-    };
+    const auto position = [&](double v) { return std::clamp((v - table.lo) / width, 0.0, 1.0) * double(size - 1); };
     std::vector<std::uint8_t> visible(grid.brickCount());
     for (std::size_t i = 0; i < visible.size(); ++i) {
-        // One entry of slack on each side: the shader computes x in float.
-        const int from = std::max(entry(grid.range[i].x) - 1, 0);
-        const int to = std::min(entry(grid.range[i].y) + 2, size - 1);
+        const int from = std::max(int(std::floor(position(grid.range[i].x) * (1.0 - 1e-6))), 0);
+        const int to = std::min(int(std::ceil(position(grid.range[i].y) * (1.0 + 1e-6))), size - 1);
         visible[i] = opaqueBefore[to + 1] - opaqueBefore[from] > 0;
     }
     return visible;

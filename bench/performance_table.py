@@ -3,8 +3,9 @@
 
     LP_NUM_THREADS=2 /usr/bin/python3 bench/performance_table.py [--frames N] [--size 512] [--quick]
 
-Table 1, per bundled dataset and renderer: `voxlab bench` with empty-space
-skipping off and on (median ms/frame, speed-up, samples skipped) and how
+Table 1, per bundled dataset (composite and MIP; the 2D transfer function
+on the datasets with a preset; the isosurface at value 60 on two): `voxlab
+bench` with empty-space skipping off and on (median ms/frame, speed-up, samples skipped) and how
 far the two images differ (`voxlab compare`: largest difference in grey
 levels, PSNR).
 
@@ -64,17 +65,24 @@ def main():
     print("| dataset | renderer | skipping off (ms) | skipping on (ms) | speed-up | samples skipped | "
           "image: largest difference | PSNR |")
     print("|---|---|---:|---:|---:|---:|---:|---:|")
-    for name in datasets:
-        for renderer in ["composite", "mip"]:
-            scene = ["--dataset", f"{name}.nrrd", "--renderer", renderer, *view]
-            if renderer == "composite":
-                scene += ["--tf", f"tf/{name}.json"]
-            off = bench(args.voxlab, scene + ["--skip-empty-space", "off"], args.frames)
-            on = bench(args.voxlab, scene, args.frames)
-            largest, psnr = difference(args.voxlab, scene + ["--skip-empty-space", "off"], scene, folder)
-            print(f"| {name} | {renderer} | {off['median_ms']:.0f} | {on['median_ms']:.0f} | "
-                  f"{off['median_ms'] / on['median_ms']:.1f}x | {100 * on['skipped_fraction']:.0f}% | "
-                  f"{largest:g} | {psnr} |", flush=True)
+    rows = [(name, renderer) for name in datasets for renderer in ["composite", "mip"]]
+    # The other renderers that skip: the 2D transfer function (its presets) and the isosurface.
+    rows += [(name, "tf2d") for name in ["bonsai", "cthead", "tooth"][: 1 if args.quick else 3]]
+    rows += [(name, "iso") for name in ["bonsai", "cthead"][: 1 if args.quick else 2]]
+    for name, renderer in rows:
+        scene = ["--dataset", f"{name}.nrrd", "--renderer", renderer, *view]
+        if renderer == "composite":
+            scene += ["--tf", f"tf/{name}.json"]
+        elif renderer == "tf2d":
+            scene += ["--tf2d", f"tf2d/{name}.json"]
+        elif renderer == "iso":
+            scene += ["--param", "isovalue=60"]
+        off = bench(args.voxlab, scene + ["--skip-empty-space", "off"], args.frames)
+        on = bench(args.voxlab, scene, args.frames)
+        largest, psnr = difference(args.voxlab, scene + ["--skip-empty-space", "off"], scene, folder)
+        print(f"| {name} | {renderer} | {off['median_ms']:.0f} | {on['median_ms']:.0f} | "
+              f"{off['median_ms'] / on['median_ms']:.1f}x | {100 * on['skipped_fraction']:.0f}% | "
+              f"{largest:g} | {psnr} |", flush=True)
 
     print()
     scene = ["--dataset", "bonsai.nrrd", "--renderer", "composite", "--tf", "tf/bonsai.json", *view]

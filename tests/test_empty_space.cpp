@@ -19,6 +19,7 @@
 #include "support/gl_fixture.h"
 #include "voxlab/camera.h"
 #include "voxlab/empty_space.h"
+#include "voxlab/gradients.h"
 #include "voxlab/grading.h"
 #include "voxlab/image_metrics.h"
 #include "voxlab/renderer.h"
@@ -184,9 +185,63 @@ TEST(EmptySpace, BricksCalledEmptyHaveNoOpacityAnywhere) {
     });
 }
 
+TEST(BrickGrid, GradientBoundsHoldForEveryEstimator) {
+    // Anisotropic spacing: gradients are per smallest spacing.
+    const Volume v = blobVolume({30, 26, 22}, 31u, glm::dvec3(1.0, 1.5, 2.0));
+    BrickGrid grid = BrickGrid::build(v, 8);
+    grid.computeGradientBounds(v);
+    ASSERT_EQ(grid.gradientBound.size(), grid.brickCount());
+    const std::vector<glm::vec3> central = computeGradients(v, GradientEstimator::Central);
+    const std::vector<glm::vec3> sobel = computeGradients(v, GradientEstimator::Sobel);
+    // A per-voxel field read back trilinearly, as the GPU filters the gradient texture.
+    const auto interpolate = [&](const std::vector<glm::vec3>& g, glm::dvec3 u) {
+        const glm::dvec3 c = u - 0.5, lower = glm::floor(c), w = c - lower;
+        glm::dvec3 sum(0.0);
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::ivec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+            const glm::ivec3 k = glm::clamp(glm::ivec3(lower) + o, glm::ivec3(0), v.dims() - 1);
+            const double weight = (o.x ? w.x : 1 - w.x) * (o.y ? w.y : 1 - w.y) * (o.z ? w.z : 1 - w.z);
+            sum += weight * glm::dvec3(g[(std::size_t(k.z) * v.dims().y + k.y) * v.dims().x + k.x]);
+        }
+        return sum;
+    };
+    std::mt19937 rng(12);
+    forEachBrick(grid, [&](glm::ivec3 b) {
+        const std::size_t i = grid.index(b);
+        // The wide range holds every voxel two around the brick (brute force).
+        const glm::ivec3 from = glm::max(b * 8 - 2, glm::ivec3(0)), to = glm::min((b + 1) * 8 + 1, v.dims() - 1);
+        double lo = INFINITY, hi = -INFINITY;
+        for (int z = from.z; z <= to.z; ++z)
+            for (int y = from.y; y <= to.y; ++y)
+                for (int x = from.x; x <= to.x; ++x) lo = std::min(lo, v.value(x, y, z)), hi = std::max(hi, v.value(x, y, z));
+        EXPECT_EQ(grid.wideRange[i], glm::vec2(float(lo), float(hi)));
+        for (int k = 0; k < 200; ++k) {
+            const glm::dvec3 u = pointInBrick(v, grid, b, rng);
+            // The gradient stage's central differences in voxel units, scaled to the smallest spacing.
+            const double stage = glm::length(centralGradient(v, u) / v.spacing() * v.minSpacing());
+            for (double g : {stage, glm::length(interpolate(central, u)), glm::length(interpolate(sobel, u))}) {
+                ASSERT_LE(g, grid.gradientBound[i]) << "brick " << b.x << "," << b.y << "," << b.z;
+            }
+        }
+    });
+    // On a linear field the bound is the gradient itself: |(3, -2, 1)| in every brick.
+    std::vector<std::uint8_t> bytes(20 * 20 * 20 * sizeof(float));
+    float* f = reinterpret_cast<float*>(bytes.data());
+    for (int z = 0; z < 20; ++z)
+        for (int y = 0; y < 20; ++y)
+            for (int x = 0; x < 20; ++x) f[(z * 20 + y) * 20 + x] = float(3 * x - 2 * y + z);
+    const Volume linear({20, 20, 20}, VoxelType::Float32, glm::dvec3(1.0), std::move(bytes));
+    BrickGrid exact = BrickGrid::build(linear, 8);
+    exact.computeGradientBounds(linear);
+    for (float bound : exact.gradientBound) EXPECT_NEAR(bound, std::sqrt(14.0), 1e-3);
+}
+
 TEST(EmptySpace, BricksCalledEmptyUnderThe2DTransferFunctionHaveNoOpacity) {
+  for (bool bounds : {false, true}) {
+    SCOPED_TRACE(bounds ? "with gradient bounds" : "with the range bound");
     const Volume v = blobVolume({40, 36, 32}, 21u);
-    const BrickGrid grid = BrickGrid::build(v, 8);
+    BrickGrid grid = BrickGrid::build(v, 8);
+    if (bounds) grid.computeGradientBounds(v);
     // A narrow triangle at 120 (only steep edges reach it) and a box.
     Tf2dWidget triangle;
     triangle.kind = Tf2dWidget::Kind::Triangle;
@@ -236,6 +291,7 @@ TEST(EmptySpace, BricksCalledEmptyUnderThe2DTransferFunctionHaveNoOpacity) {
     everything.gradientRange = {0.0, 1e9};
     const std::vector<std::uint8_t> all = visibleBricks(grid, std::vector<Tf2dWidget>{everything});
     EXPECT_EQ(std::count(all.begin(), all.end(), 1), long(all.size()));
+  }
 }
 
 TEST(EmptySpace, BricksBelowAThresholdAreEmpty) {

@@ -51,8 +51,23 @@ struct BrickGrid {
     glm::ivec3 count{0};          // bricks along each axis (the last may be partial)
     std::vector<glm::vec2> range;  // per brick, x fastest: (smallest, largest) value, data units
 
+    // For the 2D transfer function, per brick (empty until
+    // computeGradientBounds()): the value range over the brick and two
+    // voxels around it (everything a gradient estimate there reads), and a
+    // bound on the gradient magnitude, sqrt(Lx^2 + Ly^2 + Lz^2) with L_a the
+    // largest difference of two neighbouring voxels along axis a in that
+    // region. Along a line parallel to axis a the trilinear field is
+    // piecewise linear with slopes that are blends of those differences, so
+    // every difference quotient the estimators take (central, 26-neighbour,
+    // precomputed, one-sided at the faces) is at most L_a per voxel, and at
+    // most L_a per smallest spacing.
+    std::vector<glm::vec2> wideRange;
+    std::vector<float> gradientBound;
+
     // Builds the grid of a volume: one pass over its voxels per brick row.
     static BrickGrid build(const Volume& volume, int brickSize = kBrickSize);
+    // Fills wideRange and gradientBound (about three reads per voxel).
+    void computeGradientBounds(const Volume& volume);
 
     std::size_t brickCount() const { return range.size(); }
     std::size_t index(glm::ivec3 brick) const {
@@ -84,13 +99,14 @@ struct EmptySpaceRule {
 // has opacity > 0.
 std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const TransferFunctionTable& table);
 
-// TransferFunction2D: with [lo, hi] the range over the brick and its
-// neighbours (every value a sample or its gradient reads), a box widget
-// needs its value interval to meet [lo, hi]; Levoy's triangle (value v0,
-// radius r) is non-zero where |v - v0| <= r |g|, and every gradient estimate
-// is at most 2 sqrt(3) (hi - lo) in units of data per smallest spacing (a
-// difference of two values in [lo, hi] over at least half a voxel, on each
-// of three axes).
+// TransferFunction2D: a box widget needs its value and gradient intervals
+// to meet the brick's range and [0, gradient bound]; Levoy's triangle
+// (value v0, radius r) is non-zero where |v - v0| <= r |g|, so it needs
+// v0 within r times the gradient bound of the range. With the grid's
+// gradient bounds computed, the brick's wideRange and gradientBound are
+// used; without, the range over the brick and its 26 neighbours and the
+// cruder bound 2 sqrt(3) (hi - lo) (a difference of two values in [lo, hi]
+// over at least half a voxel, on each of three axes).
 std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const std::vector<Tf2dWidget>& widgets);
 
 // AtLeast: visible where the brick's largest value reaches the threshold.

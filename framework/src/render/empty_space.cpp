@@ -73,7 +73,55 @@ glm::vec2 neighbourhoodRange(const BrickGrid& grid, std::size_t i) {
     return r;
 }
 
+// wideRange and gradientBound (see empty_space.h), brick by brick over
+// the brick and kGradientApron voxels around it.
+template <class T>
+void fillGradientBounds(const std::uint8_t* bytes, glm::ivec3 dims, BrickGrid* grid) {
+    constexpr int kGradientApron = 2;
+    const auto at = [&](int x, int y, int z) {
+        T v;
+        const std::size_t i = (std::size_t(z) * std::size_t(dims.y) + std::size_t(y)) * std::size_t(dims.x) + std::size_t(x);
+        std::memcpy(&v, bytes + i * sizeof(T), sizeof(T));
+        return double(v);
+    };
+    const int b = grid->brickSize;
+    for (int bz = 0; bz < grid->count.z; ++bz)
+        for (int by = 0; by < grid->count.y; ++by)
+            for (int bx = 0; bx < grid->count.x; ++bx) {
+                const glm::ivec3 brick(bx, by, bz);
+                const glm::ivec3 from = glm::max(brick * b - kGradientApron, glm::ivec3(0));
+                const glm::ivec3 to = glm::min((brick + 1) * b + kGradientApron, dims);  // exclusive
+                double lo = INFINITY, hi = -INFINITY;
+                glm::dvec3 slope(0.0);
+                for (int z = from.z; z < to.z; ++z)
+                    for (int y = from.y; y < to.y; ++y)
+                        for (int x = from.x; x < to.x; ++x) {
+                            const double v = at(x, y, z);
+                            lo = std::min(lo, v), hi = std::max(hi, v);
+                            if (x + 1 < to.x) slope.x = std::max(slope.x, std::abs(at(x + 1, y, z) - v));
+                            if (y + 1 < to.y) slope.y = std::max(slope.y, std::abs(at(x, y + 1, z) - v));
+                            if (z + 1 < to.z) slope.z = std::max(slope.z, std::abs(at(x, y, z + 1) - v));
+                        }
+                const std::size_t i = grid->index(brick);
+                grid->wideRange[i] = glm::vec2(float(lo), float(hi));
+                // Rounded up a little: the shader's float arithmetic.
+                grid->gradientBound[i] = float(glm::length(slope) * (1.0 + 1e-5) + 1e-6 * (std::abs(lo) + std::abs(hi)));
+            }
+}
+
 }  // namespace
+
+void BrickGrid::computeGradientBounds(const Volume& volume) {
+    wideRange.assign(brickCount(), glm::vec2(0.0f));
+    gradientBound.assign(brickCount(), 0.0f);
+    const std::uint8_t* bytes = volume.bytes().data();
+    switch (volume.type()) {
+        case VoxelType::UInt8: fillGradientBounds<std::uint8_t>(bytes, volume.dims(), this); break;
+        case VoxelType::UInt16: fillGradientBounds<std::uint16_t>(bytes, volume.dims(), this); break;
+        case VoxelType::Int16: fillGradientBounds<std::int16_t>(bytes, volume.dims(), this); break;
+        case VoxelType::Float32: fillGradientBounds<float>(bytes, volume.dims(), this); break;
+    }
+}
 
 BrickGrid BrickGrid::build(const Volume& volume, int brickSize) {
     BrickGrid grid;
@@ -120,11 +168,13 @@ std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const TransferFun
 std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const std::vector<Tf2dWidget>& widgets) {
     std::vector<std::uint8_t> visible(grid.brickCount(), 0);
     for (std::size_t i = 0; i < visible.size(); ++i) {
-        const glm::vec2 range = neighbourhoodRange(grid, i);
+        const bool bounds = grid.gradientBound.size() == grid.brickCount();
+        const glm::vec2 range = bounds ? grid.wideRange[i] : neighbourhoodRange(grid, i);
         const double lo = range.x, hi = range.y;
         // The largest gradient magnitude a sample here can see, with a
         // little slack for float rounding in a flat brick.
-        const double gradientBound = 2.0 * std::sqrt(3.0) * (hi - lo) + 1e-5 * (std::abs(lo) + std::abs(hi) + 1.0);
+        const double gradientBound = bounds ? double(grid.gradientBound[i])
+                                            : 2.0 * std::sqrt(3.0) * (hi - lo) + 1e-5 * (std::abs(lo) + std::abs(hi) + 1.0);
         for (const Tf2dWidget& w : widgets) {
             if (!(w.alpha > 0.0f)) continue;
             bool reaches;

@@ -27,7 +27,10 @@ void RenderEngine::bindBricks(const ShaderProgram& prog, const EmptySpaceRule& r
         case EmptySpaceRule::Kind::TransferFunction:
             visible = table ? visibleBricks(*bricks_, *table) : allBricksVisible(*bricks_);
             break;
-        case EmptySpaceRule::Kind::TransferFunction2D: visible = visibleBricks(*bricks_, widgets); break;
+        case EmptySpaceRule::Kind::TransferFunction2D:
+            if (bricks_->gradientBound.empty()) bricks_->computeGradientBounds(*volume_);  // once per volume
+            visible = visibleBricks(*bricks_, widgets);
+            break;
         case EmptySpaceRule::Kind::AtLeast: visible = bricksReaching(*bricks_, rule.threshold); break;
         case EmptySpaceRule::Kind::None: visible = allBricksVisible(*bricks_); break;
     }

@@ -90,8 +90,9 @@ int benchCommand(int argc, char** argv) {
     if (args.has("help")) {
         std::cout << "usage: voxlab bench [SCENE.json] [--frames N] [--json] [scene options]\n\n"
                      "Renders the scene headless frame after frame, turning the camera a little between\n"
-                     "frames, and prints the median and spread of the time per frame and the samples per\n"
-                     "second (ray-casting renderers).\n\n"
+                     "frames, and prints the median and spread of the time per frame and, for the\n"
+                     "ray-casting renderers, the samples per second and the share of them skipped (empty\n"
+                     "space, early termination), counted on the GPU. See docs/performance.md.\n\n"
                   << formatOptions(specs);
         return 0;
     }
@@ -143,7 +144,7 @@ int benchCommand(int argc, char** argv) {
     const double median = percentile(ms, 50.0), q1 = percentile(ms, 25.0), q3 = percentile(ms, 75.0);
     const double lowest = *std::min_element(ms.begin(), ms.end()), highest = *std::max_element(ms.begin(), ms.end());
     const double samplesPerSecond = counted && totalMs > 0 ? samples / (totalMs / 1000.0) : 0.0;
-    const std::string skipping = scene.skipEmptySpace ? "on" : "off";
+    const std::string skipping = renderer.objectOrder() ? "n/a (slices)" : scene.skipEmptySpace ? "on" : "off";
     if (args.has("json")) {
         nlohmann::json j = {{"dataset", scene.dataset},   {"renderer", scene.renderer},
                             {"width", scene.width},       {"height", scene.height},

@@ -131,6 +131,37 @@ TEST_F(ViewerWindow, AScriptedSessionShowsEveryPart) {
     EXPECT_GT(stats(panels, {400, 100, 620, 240}).spread, 0.05);
 }
 
+// The samples view colours each pixel by the samples its ray takes, on a
+// fixed scale: with empty-space skipping the air around the bonsai goes
+// dark, without it the whole box glows.
+TEST_F(ViewerWindow, TheSamplesViewShowsWhatSkippingLeavesOut) {
+    const CommandResult r = play("load bonsai.nrrd\n"
+                                 "renderer composite\n"
+                                 "tf tf/bonsai.json\n"
+                                 "panel tf off\n"
+                                 "panel controls off\n"
+                                 "camera azimuth 35\n"
+                                 "camera elevation 25\n"
+                                 "wait 2\n"
+                                 "screenshot " + path("image.png") + "\n"
+                                 "samples on\n"
+                                 "wait 2\n"
+                                 "screenshot " + path("skipping.png") + "\n"
+                                 "skipping off\n"
+                                 "wait 2\n"
+                                 "screenshot " + path("every_sample.png") + "\n"
+                                 "quit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    const Image image = loadPng(path("image.png")), skipping = loadPng(path("skipping.png")),
+                every = loadPng(path("every_sample.png"));
+    // Right of the leaves, below the plate: air inside the box.
+    const Region air = {420, 200, 500, 300};
+    const double skipped = stats(skipping, air).mean, sampled = stats(every, air).mean;
+    EXPECT_LT(skipped, 0.03) << "skipping should leave the air unsampled";
+    EXPECT_GT(sampled, 0.1) << "without skipping every ray samples the air";
+    EXPECT_GT(meanDifference(image, skipping, {0, 0, 640, 360}), 0.02) << "the samples view looks like the image";
+}
+
 TEST_F(ViewerWindow, ABadScriptOrDatasetIsAOneLineError) {
     std::ofstream(path("bad.vs")) << "renderer mip\nrotat 10 20\n";
     const CommandResult bad = runShell("xvfb-run -a " + std::string(VOXLAB_BINARY) + " view --script " +

@@ -22,6 +22,7 @@
 #include "voxlab/error.h"
 #include "voxlab/flip.h"
 #include "voxlab/gl_context.h"
+#include "voxlab/ray_profile.h"
 #include "voxlab/render_engine.h"
 #include "voxlab/volume.h"
 #include "voxlab_gl.h"
@@ -29,28 +30,6 @@
 namespace voxlab::cli {
 
 namespace {
-
-// Samples one frame of a ray-casting renderer takes (cutting planes and
-// slabs, which shorten rays further, are not counted).
-double samplesPerFrame(const Volume& volume, const Scene& scene) {
-    const Camera camera = Camera::make(scene.camera, volume.extent(), scene.width, scene.height);
-    glm::dvec3 lo(0.0), hi = volume.extent();
-    if (scene.roi) {
-        lo = glm::max(lo, scene.roi->min * volume.spacing());
-        hi = glm::min(hi, scene.roi->max * volume.spacing());
-    }
-    const double step = scene.step * volume.minSpacing();
-    double total = 0.0;
-    for (int y = 0; y < scene.height; ++y)
-        for (int x = 0; x < scene.width; ++x) {
-            glm::dvec3 o, d;
-            camera.ray(x + 0.5, y + 0.5, &o, &d);
-            double t0, t1;
-            if (!clipRayToBox(o, d, lo, hi, &t0, &t1)) continue;
-            total += std::floor((t1 - t0) / step + 0.5);
-        }
-    return total;
-}
 
 // The per-pixel counts (red channel) through the magma colour map, black
 // for none, bright yellow for the most any pixel took (the largest count is
@@ -125,7 +104,7 @@ int benchCommand(int argc, char** argv) {
         const double elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         if (f < warmup) continue;
         ms.push_back(elapsed);
-        if (counted) samples += samplesPerFrame(volume, scene);
+        if (counted) samples += samplesByRule(volume, scene);
     }
     // One more frame, untimed, at the last view: the samples the shaders
     // actually took (with skipping and early termination), counted on the GPU.
@@ -136,7 +115,7 @@ int benchCommand(int argc, char** argv) {
     } else if (args.get("sample-map")) {
         throw Error("option --sample-map: only ray-casting renderers without a cutting plane take samples");
     }
-    const double full = counted ? samplesPerFrame(volume, scene) : 0.0;
+    const double full = counted ? samplesByRule(volume, scene) : 0.0;
     double skipped = full > 0.0 ? 1.0 - taken / full : 0.0;
     if (std::abs(skipped) < 5e-4) skipped = 0.0;  // rays grazing the box: a sample more or less
     double totalMs = 0.0;

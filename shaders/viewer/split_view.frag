@@ -6,11 +6,14 @@
 //             image right of it;
 //   u_mode 2  difference: a heat map of the largest per-channel |left - right|,
 //             amplified four times (black: equal; purple, orange, yellow: more).
+// With u_count_scale > 0 the images hold sample counts in red (the samples
+// view): each is shown as heat(count * u_count_scale) first.
 uniform sampler2D u_left;
 uniform sampler2D u_right;
 uniform vec2 u_viewport_size;  // framebuffer pixels
 uniform float u_divider;       // framebuffer x of the divider
 uniform int u_mode;
+uniform float u_count_scale;
 
 out vec4 frag_color;
 
@@ -22,14 +25,19 @@ vec3 heat(float t) {
     return mix(c2, c3, 3.0 * t - 2.0);
 }
 
+vec3 image(sampler2D side, vec2 uv) {
+    vec3 c = texture(side, uv).rgb;
+    return u_count_scale > 0.0 ? heat(c.r * u_count_scale) : clamp(c, 0.0, 1.0);
+}
+
 void main() {
     vec2 uv = gl_FragCoord.xy / u_viewport_size;
-    vec3 left = clamp(texture(u_left, uv).rgb, 0.0, 1.0);
+    vec3 left = image(u_left, uv);
     if (u_mode == 0) {
         frag_color = vec4(left, 1.0);
         return;
     }
-    vec3 right = clamp(texture(u_right, uv).rgb, 0.0, 1.0);
+    vec3 right = image(u_right, uv);
     if (u_mode == 1) {
         frag_color = vec4(gl_FragCoord.x < u_divider ? left : right, 1.0);
         return;

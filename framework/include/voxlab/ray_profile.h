@@ -83,6 +83,14 @@ struct RayProfile {
 // an unknown renderer.
 RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, int py);
 
+// The samples a frame of `scene` takes by the README's rule, summed over its
+// pixels: floor(length / step + 1/2) per ray over the part inside the box
+// and the region of interest (cutting planes and slabs, which shorten rays
+// further, are not counted). What a ray caster without any skipping takes;
+// `voxlab bench` and the viewer's samples view compare it with the samples
+// counted on the GPU.
+double samplesByRule(const Volume& volume, const Scene& scene);
+
 // The pixel the renderer would show: `profile.result` over `background`.
 glm::vec3 profilePixel(const RayProfile& profile, const glm::vec3& background);
 

@@ -502,4 +502,24 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
     return profile;
 }
 
+double samplesByRule(const Volume& volume, const Scene& scene) {
+    const Camera camera = Camera::make(scene.camera, volume.extent(), scene.width, scene.height);
+    glm::dvec3 lo(0.0), hi = volume.extent();
+    if (scene.roi) {
+        lo = glm::max(lo, scene.roi->min * volume.spacing());
+        hi = glm::min(hi, scene.roi->max * volume.spacing());
+    }
+    const double step = scene.step * volume.minSpacing();
+    double total = 0.0;
+    for (int y = 0; y < scene.height; ++y)
+        for (int x = 0; x < scene.width; ++x) {
+            glm::dvec3 o, d;
+            camera.ray(x + 0.5, y + 0.5, &o, &d);
+            double t0, t1;
+            if (!clipRayToBox(o, d, lo, hi, &t0, &t1)) continue;
+            total += std::floor((t1 - t0) / step + 0.5);
+        }
+    return total;
+}
+
 }  // namespace voxlab

@@ -142,6 +142,12 @@ public:
             if (!(numberAt(1, msg) > numberAt(0, msg))) fail(msg);
             return;
         }
+        if (c == "samples" || c == "skipping") {
+            const char* msg = "expected on or off";
+            exactly(1, msg);
+            if (!isOneOf(arg(0), {"on", "off"})) fail(msg, 0);
+            return;
+        }
         if (c == "split") {
             const char* msg = "expected on, off or difference";
             exactly(1, msg);
@@ -225,7 +231,7 @@ private:
 
 constexpr const char* kCommands[] = {
     "load", "scene", "renderer", "param", "step", "interpolation", "tf", "camera", "rotate",
-    "window", "split", "divider", "right", "drag", "implementation", "panel", "click", "size", "wait", "screenshot", "quit"};
+    "window", "samples", "skipping", "split", "divider", "right", "drag", "implementation", "panel", "click", "size", "wait", "screenshot", "quit"};
 
 }  // namespace
 

@@ -117,6 +117,11 @@ void techniquePanel(State& s) {
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Leap over bricks the transfer function hides (same image, fewer samples;\n"
                           "see docs/performance.md). Turn off to compare frame times.");
+    ImGui::SameLine();
+    if (ImGui::Checkbox("show samples", &s.showSamples)) s.dirty = true;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Colour each pixel by the samples its ray takes (black: none; yellow: a ray\n"
+                          "along the box's diagonal with no skipping). Ray casters without a cutting plane.");
     glm::dvec2 w = s.scene.window.value_or(volume.valueRange());
     float lo = float(w.x), hi = float(w.y);
     const float speed = float((volume.maxValue() - volume.minValue()) / 500.0 + 1e-6);
@@ -290,11 +295,17 @@ void drawOverlays(State& s) {
                     "difference |left - right| x4 (black: equal)");
     }
 
-    // Frame time, bottom right, always.
-    char line[160];
-    std::snprintf(line, sizeof line, "%s  render %.1f ms (%.1f frames/s)  %dx%d%s", s.scene.renderer.c_str(),
-                  s.renderMs, s.renderMs > 0 ? 1000.0 / s.renderMs : 0.0, s.imageWidth,
-                  s.imageHeight, s.interactive ? "  interactive: reduced size, double step" : "");
+    // Frame time, bottom right, always; in the samples view the samples too.
+    char samples[128] = "";
+    if (s.samplesShown && s.samplesFull > 0)
+        std::snprintf(samples, sizeof samples, "  samples %.3g of %.3g (%.0f%% skipped)", s.samplesTaken,
+                      s.samplesFull, 100.0 * std::max(0.0, 1.0 - s.samplesTaken / s.samplesFull));
+    else if (s.showSamples)
+        std::snprintf(samples, sizeof samples, "  samples: ray casters without a cutting plane only");
+    char line[320];
+    std::snprintf(line, sizeof line, "%s  render %.1f ms (%.1f frames/s)  %dx%d%s%s", s.scene.renderer.c_str(),
+                  s.renderMs, s.renderMs > 0 ? 1000.0 / s.renderMs : 0.0, s.imageWidth, s.imageHeight,
+                  s.interactive ? "  interactive: reduced size, double step" : "", samples);
     const ImVec2 t = ImGui::CalcTextSize(line);
     fg->AddRectFilled(ImVec2(size.x - t.x - 18 * scale, size.y - t.y - 14 * scale), ImVec2(size.x, size.y),
                       IM_COL32(0, 0, 0, 150));

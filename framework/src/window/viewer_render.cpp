@@ -13,6 +13,7 @@
 
 #include "viewer_state.h"
 #include "voxlab/error.h"
+#include "voxlab/ray_profile.h"
 #include "voxlab/shader.h"
 
 namespace voxlab::viewer {
@@ -39,13 +40,26 @@ Scene sideScene(const State& s, const Side& side, int width, int height, bool re
     return scene;
 }
 
-void renderSide(Side& side, const Scene& scene) {
+// Renders one side, or counts its samples in the samples view. Returns
+// the samples counted (0 when rendering normally).
+double renderSide(Side& side, const Scene& scene, bool countSamples) {
     try {
-        side.engine->renderOffscreen(scene);
+        double taken = 0.0;
+        if (countSamples) taken = side.engine->countSamples(scene);
+        else side.engine->renderOffscreen(scene);
         side.error.clear();
+        return taken;
     } catch (const Error& e) {
         side.error = e.what();  // the last good image stays
     }
+    return 0.0;
+}
+
+// Whether the samples view can show this scene: ray casters only (slices
+// take no samples along rays), and no cutting plane (two passes composed).
+bool countable(const Scene& scene) {
+    const Renderer* renderer = rendererRegistry().find(scene.renderer);
+    return renderer && !renderer->objectOrder() && !scene.cuttingPlane;
 }
 
 }  // namespace
@@ -110,13 +124,23 @@ void renderFrame(State& s) {
     const int w = reduced ? std::max(1, int(s.fbWidth / s.reduction)) : s.fbWidth;
     const int h = reduced ? std::max(1, int(s.fbHeight / s.reduction)) : s.fbHeight;
     const auto t0 = Clock::now();
-    renderSide(s.main, sideScene(s, s.main, w, h, reduced));
+    const Scene mainScene = sideScene(s, s.main, w, h, reduced);
+    Scene otherScene;
+    if (s.split != SplitMode::Off) otherScene = sideScene(s, s.other, w, h, reduced);
+    s.samplesShown = s.showSamples && countable(mainScene) && (s.split == SplitMode::Off || countable(otherScene));
+    s.samplesTaken = renderSide(s.main, mainScene, s.samplesShown);
     if (s.split != SplitMode::Off) {
         if (!s.other.engine) setImplementation(s.other, "", *s.volume);
-        renderSide(s.other, sideScene(s, s.other, w, h, reduced));
+        renderSide(s.other, otherScene, s.samplesShown);
     }
     glFinish();
     s.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    if (s.samplesShown) {
+        // The scale: the samples along the box's diagonal at this frame's step.
+        const double most = glm::length(s.volume->extent()) / (mainScene.step * s.volume->minSpacing());
+        s.countScale = float(1.0 / std::max(most, 1.0));
+        s.samplesFull = samplesByRule(*s.volume, mainScene);
+    }
     s.imageWidth = w, s.imageHeight = h;
     // Hold about 10 frames/s while the mouse is busy: shrink the reduced
     // image when it renders too slowly, grow it back when there is room
@@ -158,6 +182,7 @@ void presentFrame(State& s) {
     program->set("u_viewport_size", glm::vec2(s.fbWidth, s.fbHeight));
     program->set("u_divider", s.divider * float(s.fbWidth));
     program->set("u_mode", !split ? 0 : s.split == SplitMode::Split ? 1 : 2);
+    program->set("u_count_scale", s.samplesShown ? s.countScale : 0.0f);
     glBindVertexArray(s.presenterVao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glActiveTexture(GL_TEXTURE0);

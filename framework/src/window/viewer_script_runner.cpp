@@ -54,6 +54,10 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
             rotateCamera(&s.scene.camera, number(st, 0), number(st, 1));
         } else if (c == "window") {
             s.scene.window = glm::dvec2(number(st, 0), number(st, 1));
+        } else if (c == "samples") {
+            s.showSamples = onOff(st, 0);
+        } else if (c == "skipping") {
+            s.scene.skipEmptySpace = onOff(st, 0);
         } else if (c == "split") {
             const std::string& m = word(st, 0);
             s.split = m == "on" ? SplitMode::Split : m == "difference" ? SplitMode::Difference : SplitMode::Off;

@@ -68,6 +68,14 @@ struct State {
     int fbWidth = 0, fbHeight = 0;  // framebuffer pixels
     float contentScale = 1.0f;      // high-DPI scale of the window
     int imageWidth = 0, imageHeight = 0;  // size of the images last rendered
+    // The samples view: each pixel coloured by the samples its ray took
+    // (RenderEngine::countSamples), on a scale where yellow is the most a
+    // ray through the box's diagonal can take; the left (or only) side's
+    // total and the README's count for the same frame.
+    bool showSamples = false;
+    bool samplesShown = false;  // the last images are counts (a ray caster without a cutting plane)
+    float countScale = 1.0f;
+    double samplesTaken = 0.0, samplesFull = 0.0;
 
     // Mouse.
     bool dragging = false, panning = false, draggingDivider = false;

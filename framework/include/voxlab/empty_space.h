@@ -18,8 +18,8 @@
 // (nearest and the GPU's filtering read no further). That is all a value
 // test needs, shading included: a sample whose value has zero opacity adds
 // nothing, whatever its gradient. Only the 2D transfer function classifies
-// by the gradient, which reads one voxel further; it takes its ranges from
-// the brick and its 26 neighbours (visibleBricks, 2D).
+// by the gradient, which reads one voxel further: it uses the wider range
+// and the gradient bound below (computeGradientBounds).
 //
 // The GLSL side (shaders/voxlab/empty_space.glsl) walks rays brick by brick
 // with these flags; the render engine rebuilds the ranges once per volume

@@ -99,14 +99,12 @@ struct EmptySpaceRule {
 // has opacity > 0.
 std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const TransferFunctionTable& table);
 
-// TransferFunction2D: a box widget needs its value and gradient intervals
-// to meet the brick's range and [0, gradient bound]; Levoy's triangle
-// (value v0, radius r) is non-zero where |v - v0| <= r |g|, so it needs
-// v0 within r times the gradient bound of the range. With the grid's
-// gradient bounds computed, the brick's wideRange and gradientBound are
-// used; without, the range over the brick and its 26 neighbours and the
-// cruder bound 2 sqrt(3) (hi - lo) (a difference of two values in [lo, hi]
-// over at least half a voxel, on each of three axes).
+// TransferFunction2D: with the brick's wideRange and gradientBound (the
+// grid must have them: computeGradientBounds(), else voxlab::Error), a box
+// widget needs its value and gradient intervals to meet the range and
+// [0, gradient bound]; Levoy's triangle (value v0, radius r) is non-zero
+// where |v - v0| <= r |g|, so it needs v0 within r times the gradient bound
+// of the range.
 std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const std::vector<Tf2dWidget>& widgets);
 
 // AtLeast: visible where the brick's largest value reaches the threshold.

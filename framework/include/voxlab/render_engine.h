@@ -88,9 +88,6 @@ public:
     // termination as the scene has them. Ray-casting renderers only, no
     // cutting plane; the image in the offscreen target is the counts.
     double countSamples(const Scene& scene);
-    // The brick grid of the current volume (built on the first render that
-    // skips empty space), or null.
-    const BrickGrid* brickGrid() const { return bricks_.get(); }
 
 private:
     // One transfer-function table on the GPU and what it was baked from.

@@ -5,10 +5,30 @@
 #include <cmath>
 #include <cstring>
 
+#include "voxlab/error.h"
 #include "voxlab/volume.h"
 
 namespace voxlab {
 namespace {
+
+// Voxel `index` of raw little-endian voxels of type T, as a float.
+template <class T>
+float voxelValue(const std::uint8_t* bytes, std::size_t index) {
+    T v;
+    std::memcpy(&v, bytes + index * sizeof(T), sizeof(T));
+    return float(v);
+}
+
+// Calls fill(T{}) with T the volume's voxel type.
+template <class Fill>
+void withVoxelType(VoxelType type, Fill&& fill) {
+    switch (type) {
+        case VoxelType::UInt8: fill(std::uint8_t{}); break;
+        case VoxelType::UInt16: fill(std::uint16_t{}); break;
+        case VoxelType::Int16: fill(std::int16_t{}); break;
+        case VoxelType::Float32: fill(float{}); break;
+    }
+}
 
 // The ranges, one layer of bricks (along z) at a time. First each voxel row
 // of the layer (with its apron) is reduced to one (min, max) per brick
@@ -19,11 +39,7 @@ template <class T>
 void fillRanges(const std::uint8_t* bytes, glm::ivec3 dims, BrickGrid* grid) {
     const int b = grid->brickSize, apron = kBrickApron;
     const glm::ivec3 count = grid->count;
-    const auto voxel = [&](std::size_t index) {
-        T v;
-        std::memcpy(&v, bytes + index * sizeof(T), sizeof(T));
-        return float(v);
-    };
+    const auto voxel = [&](std::size_t index) { return voxelValue<T>(bytes, index); };
     const auto first = [&](int brick) { return std::max(brick * b - apron, 0); };
     const auto last = [&](int brick, int n) { return std::min((brick + 1) * b + apron, n); };  // exclusive
     std::vector<glm::vec2> rows(std::size_t(b + 2 * apron) * std::size_t(dims.y) * std::size_t(count.x));
@@ -57,32 +73,14 @@ void fillRanges(const std::uint8_t* bytes, glm::ivec3 dims, BrickGrid* grid) {
     }
 }
 
-// The range over brick i and its 26 neighbours: it covers every voxel two
-// voxels around brick i (the bricks are at least one voxel wide).
-glm::vec2 neighbourhoodRange(const BrickGrid& grid, std::size_t i) {
-    const glm::ivec3 b(int(i % std::size_t(grid.count.x)), int(i / std::size_t(grid.count.x) % std::size_t(grid.count.y)),
-                       int(i / (std::size_t(grid.count.x) * std::size_t(grid.count.y))));
-    const glm::ivec3 from = glm::max(b - 1, glm::ivec3(0)), to = glm::min(b + 1, grid.count - 1);
-    glm::vec2 r(INFINITY, -INFINITY);
-    for (int z = from.z; z <= to.z; ++z)
-        for (int y = from.y; y <= to.y; ++y)
-            for (int x = from.x; x <= to.x; ++x) {
-                const glm::vec2 q = grid.range[grid.index({x, y, z})];
-                r = glm::vec2(std::min(r.x, q.x), std::max(r.y, q.y));
-            }
-    return r;
-}
-
 // wideRange and gradientBound (see empty_space.h), brick by brick over
 // the brick and kGradientApron voxels around it.
 template <class T>
 void fillGradientBounds(const std::uint8_t* bytes, glm::ivec3 dims, BrickGrid* grid) {
     constexpr int kGradientApron = 2;
     const auto at = [&](int x, int y, int z) {
-        T v;
-        const std::size_t i = (std::size_t(z) * std::size_t(dims.y) + std::size_t(y)) * std::size_t(dims.x) + std::size_t(x);
-        std::memcpy(&v, bytes + i * sizeof(T), sizeof(T));
-        return double(v);
+        return double(voxelValue<T>(
+            bytes, (std::size_t(z) * std::size_t(dims.y) + std::size_t(y)) * std::size_t(dims.x) + std::size_t(x)));
     };
     const int b = grid->brickSize;
     for (int bz = 0; bz < grid->count.z; ++bz)
@@ -114,13 +112,9 @@ void fillGradientBounds(const std::uint8_t* bytes, glm::ivec3 dims, BrickGrid* g
 void BrickGrid::computeGradientBounds(const Volume& volume) {
     wideRange.assign(brickCount(), glm::vec2(0.0f));
     gradientBound.assign(brickCount(), 0.0f);
-    const std::uint8_t* bytes = volume.bytes().data();
-    switch (volume.type()) {
-        case VoxelType::UInt8: fillGradientBounds<std::uint8_t>(bytes, volume.dims(), this); break;
-        case VoxelType::UInt16: fillGradientBounds<std::uint16_t>(bytes, volume.dims(), this); break;
-        case VoxelType::Int16: fillGradientBounds<std::int16_t>(bytes, volume.dims(), this); break;
-        case VoxelType::Float32: fillGradientBounds<float>(bytes, volume.dims(), this); break;
-    }
+    withVoxelType(volume.type(), [&](auto voxel) {
+        fillGradientBounds<decltype(voxel)>(volume.bytes().data(), volume.dims(), this);
+    });
 }
 
 BrickGrid BrickGrid::build(const Volume& volume, int brickSize) {
@@ -129,13 +123,8 @@ BrickGrid BrickGrid::build(const Volume& volume, int brickSize) {
     const glm::ivec3 dims = volume.dims();
     grid.count = (dims + grid.brickSize - 1) / grid.brickSize;
     grid.range.resize(std::size_t(grid.count.x) * std::size_t(grid.count.y) * std::size_t(grid.count.z));
-    const std::uint8_t* bytes = volume.bytes().data();
-    switch (volume.type()) {
-        case VoxelType::UInt8: fillRanges<std::uint8_t>(bytes, dims, &grid); break;
-        case VoxelType::UInt16: fillRanges<std::uint16_t>(bytes, dims, &grid); break;
-        case VoxelType::Int16: fillRanges<std::int16_t>(bytes, dims, &grid); break;
-        case VoxelType::Float32: fillRanges<float>(bytes, dims, &grid); break;
-    }
+    withVoxelType(volume.type(),
+                  [&](auto voxel) { fillRanges<decltype(voxel)>(volume.bytes().data(), dims, &grid); });
     return grid;
 }
 
@@ -166,15 +155,13 @@ std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const TransferFun
 }
 
 std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const std::vector<Tf2dWidget>& widgets) {
+    if (grid.gradientBound.size() != grid.brickCount())
+        throw Error("empty-space skipping: the 2D transfer function needs the brick grid's gradient bounds "
+                    "(BrickGrid::computeGradientBounds)");
     std::vector<std::uint8_t> visible(grid.brickCount(), 0);
     for (std::size_t i = 0; i < visible.size(); ++i) {
-        const bool bounds = grid.gradientBound.size() == grid.brickCount();
-        const glm::vec2 range = bounds ? grid.wideRange[i] : neighbourhoodRange(grid, i);
-        const double lo = range.x, hi = range.y;
-        // The largest gradient magnitude a sample here can see, with a
-        // little slack for float rounding in a flat brick.
-        const double gradientBound = bounds ? double(grid.gradientBound[i])
-                                            : 2.0 * std::sqrt(3.0) * (hi - lo) + 1e-5 * (std::abs(lo) + std::abs(hi) + 1.0);
+        const double lo = grid.wideRange[i].x, hi = grid.wideRange[i].y;
+        const double gradientBound = grid.gradientBound[i];
         for (const Tf2dWidget& w : widgets) {
             if (!(w.alpha > 0.0f)) continue;
             bool reaches;

@@ -92,7 +92,7 @@ int benchCommand(int argc, char** argv) {
     engine.setVolume(volume);
     CameraSpec& cam = scene.camera;
     std::vector<double> ms;
-    double samples = 0.0;
+    double samples = 0.0, full = 0.0;  // all frames', and the last frame's, by the sampling rule
     for (int f = 0; f < warmup + frames; ++f) {
         if (f >= warmup && turn != 0.0) {
             if (!cam.view.empty()) axisViewOrbitAngles(cam.view, &cam.azimuth, &cam.elevation), cam.view.clear();
@@ -104,7 +104,10 @@ int benchCommand(int argc, char** argv) {
         const double elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         if (f < warmup) continue;
         ms.push_back(elapsed);
-        if (counted) samples += samplesByRule(volume, scene);
+        if (counted) {
+            full = samplesByRule(volume, scene);
+            samples += full;
+        }
     }
     // One more frame, untimed, at the last view: the samples the shaders
     // actually took (with skipping and early termination), counted on the GPU.
@@ -115,7 +118,6 @@ int benchCommand(int argc, char** argv) {
     } else if (args.get("sample-map")) {
         throw Error("option --sample-map: only ray-casting renderers without a cutting plane take samples");
     }
-    const double full = counted ? samplesByRule(volume, scene) : 0.0;
     double skipped = full > 0.0 ? 1.0 - taken / full : 0.0;
     if (std::abs(skipped) < 5e-4) skipped = 0.0;  // rays grazing the box: a sample more or less
     double totalMs = 0.0;

@@ -117,12 +117,8 @@ public:
             if (!(numberAt(0, msg) > 0.0)) fail(msg, 0);
             return;
         }
-        if (c == "interpolation") {
-            const char* msg = "expected nearest, trilinear or hardware";
-            exactly(1, msg);
-            if (!isOneOf(arg(0), {"nearest", "trilinear", "hardware"})) fail(msg, 0);
-            return;
-        }
+        if (c == "interpolation")
+            return oneWord("expected nearest, trilinear or hardware", {"nearest", "trilinear", "hardware"});
         if (c == "drag") {
             const char* msg = "expected DX DY (pixels per frame) and a number of frames > 0";
             exactly(3, msg);
@@ -142,18 +138,8 @@ public:
             if (!(numberAt(1, msg) > numberAt(0, msg))) fail(msg);
             return;
         }
-        if (c == "samples" || c == "skipping") {
-            const char* msg = "expected on or off";
-            exactly(1, msg);
-            if (!isOneOf(arg(0), {"on", "off"})) fail(msg, 0);
-            return;
-        }
-        if (c == "split") {
-            const char* msg = "expected on, off or difference";
-            exactly(1, msg);
-            if (!isOneOf(arg(0), {"on", "off", "difference"})) fail(msg, 0);
-            return;
-        }
+        if (c == "samples" || c == "skipping") return oneWord("expected on or off", {"on", "off"});
+        if (c == "split") return oneWord("expected on, off or difference", {"on", "off", "difference"});
         if (c == "panel") {
             const char* msg = "expected a panel (slices, tf, tf2d, profile, help or controls) and on or off";
             exactly(2, msg);
@@ -183,6 +169,11 @@ private:
     const std::string& arg(int i) const { return step_.args[size_t(i)]; }
     void exactly(int n, const std::string& msg) const {
         if (int(step_.args.size()) != n) fail(msg);
+    }
+    // One argument, one of `words`.
+    void oneWord(const std::string& msg, std::initializer_list<const char*> words) const {
+        exactly(1, msg);
+        if (!isOneOf(arg(0), words)) fail(msg, 0);
     }
     double numberAt(int i, const std::string& msg) const {
         double v;

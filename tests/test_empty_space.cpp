@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/cpu_sampling.h"
 #include "support/gl_fixture.h"
 #include "voxlab/camera.h"
 #include "voxlab/empty_space.h"
@@ -55,38 +56,6 @@ Volume blobVolume(glm::ivec3 dims, unsigned seed, glm::dvec3 spacing = glm::dvec
                 bytes[i] = std::uint8_t(v);
             }
     return Volume(dims, VoxelType::UInt8, spacing, std::move(bytes), "blobs");
-}
-
-double voxel(const Volume& v, glm::ivec3 ijk) {
-    ijk = glm::clamp(ijk, glm::ivec3(0), v.dims() - 1);
-    return v.value(ijk.x, ijk.y, ijk.z);
-}
-
-// Trilinear interpolation at continuous voxel coordinate u (voxel i centred
-// at i + 1/2), clamped at the faces: the README's sampling rule.
-double trilinear(const Volume& v, glm::dvec3 u) {
-    const glm::dvec3 c = u - 0.5, lower = glm::floor(c), w = c - lower;
-    const glm::ivec3 i(lower);
-    double sum = 0.0;
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::ivec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-        const double weight = (o.x ? w.x : 1 - w.x) * (o.y ? w.y : 1 - w.y) * (o.z ? w.z : 1 - w.z);
-        sum += weight * voxel(v, i + o);
-    }
-    return sum;
-}
-
-// The gradient stage's central differences, one voxel either side (in data
-// per voxel, the spacing being 1 here).
-glm::dvec3 centralGradient(const Volume& v, glm::dvec3 u) {
-    glm::dvec3 g;
-    for (int a = 0; a < 3; ++a) {
-        glm::dvec3 lo = u, hi = u;
-        lo[a] = std::clamp(u[a] - 1.0, 0.5, v.dims()[a] - 0.5);
-        hi[a] = std::clamp(u[a] + 1.0, 0.5, v.dims()[a] - 0.5);
-        g[a] = hi[a] > lo[a] ? (trilinear(v, hi) - trilinear(v, lo)) / (hi[a] - lo[a]) : 0.0;
-    }
-    return g;
 }
 
 // A random continuous voxel coordinate inside brick b (clipped to the volume).
@@ -134,7 +103,7 @@ TEST(BrickGrid, EverySampleInABrickLiesInItsRange) {
     for (int i = 0; i < 20000; ++i) {
         const glm::dvec3 u = glm::dvec3(unit(rng), unit(rng), unit(rng)) * glm::dvec3(v.dims());
         const glm::vec2 r = grid.range[grid.index(grid.brickAt(u))];
-        const double s = trilinear(v, u);
+        const double s = cpuTrilinear(v, u * v.spacing());
         ASSERT_GE(s, r.x - 1e-9) << "at " << u.x << "," << u.y << "," << u.z;
         ASSERT_LE(s, r.y + 1e-9) << "at " << u.x << "," << u.y << "," << u.z;
     }
@@ -173,7 +142,7 @@ TEST(EmptySpace, BricksCalledEmptyHaveNoOpacityAnywhere) {
         ++empty;
         for (int i = 0; i < 300; ++i) {
             const glm::dvec3 u = pointInBrick(v, grid, b, rng);
-            ASSERT_EQ(table.lookup(trilinear(v, u)).a, 0.0f) << "empty brick " << b.x << "," << b.y << "," << b.z;
+            ASSERT_EQ(table.lookup(cpuTrilinear(v, u * v.spacing())).a, 0.0f) << "empty brick " << b.x << "," << b.y << "," << b.z;
         }
     });
     EXPECT_GT(empty, 0);
@@ -217,8 +186,8 @@ TEST(BrickGrid, GradientBoundsHoldForEveryEstimator) {
         EXPECT_EQ(grid.wideRange[i], glm::vec2(float(lo), float(hi)));
         for (int k = 0; k < 200; ++k) {
             const glm::dvec3 u = pointInBrick(v, grid, b, rng);
-            // The gradient stage's central differences in voxel units, scaled to the smallest spacing.
-            const double stage = glm::length(centralGradient(v, u) / v.spacing() * v.minSpacing());
+            // The gradient stage's central differences, per smallest spacing.
+            const double stage = glm::length(cpuCentralGradient(v, u * v.spacing()));
             for (double g : {stage, glm::length(interpolate(central, u)), glm::length(interpolate(sobel, u))}) {
                 ASSERT_LE(g, grid.gradientBound[i]) << "brick " << b.x << "," << b.y << "," << b.z;
             }
@@ -276,7 +245,7 @@ TEST(EmptySpace, BricksCalledEmptyUnderThe2DTransferFunctionHaveNoOpacity) {
         ++empty;
         for (int i = 0; i < 300; ++i) {
             const glm::dvec3 u = pointInBrick(v, grid, b, rng);
-            ASSERT_EQ(alpha(trilinear(v, u), glm::length(centralGradient(v, u))), 0.0)
+            ASSERT_EQ(alpha(cpuTrilinear(v, u * v.spacing()), glm::length(cpuCentralGradient(v, u * v.spacing()))), 0.0)
                 << "empty brick " << b.x << "," << b.y << "," << b.z;
         }
     });
@@ -300,7 +269,7 @@ TEST(EmptySpace, BricksBelowAThresholdAreEmpty) {
     std::mt19937 rng(8);
     forEachBrick(grid, [&](glm::ivec3 b) {
         if (visible[grid.index(b)]) return;
-        for (int i = 0; i < 300; ++i) ASSERT_LT(trilinear(v, pointInBrick(v, grid, b, rng)), 150.0);
+        for (int i = 0; i < 300; ++i) ASSERT_LT(cpuTrilinear(v, pointInBrick(v, grid, b, rng) * v.spacing()), 150.0);
     });
     const std::vector<std::uint8_t> none = bricksReaching(grid, 1000.0);
     EXPECT_EQ(std::count(none.begin(), none.end(), 1), 0);
@@ -331,7 +300,7 @@ SampleWalk walkSamples(const Volume& v, const Scene& scene, int brickSize) {
                 const int n = int(std::floor((t1 - t0) / step + 0.5));
                 for (int m = 0; m < n; ++m) {
                     const glm::dvec3 u = (o + (t0 + (m + 0.5) * step) * d) / v.spacing();
-                    values.push_back(voxel(v, glm::ivec3(glm::floor(u))));
+                    values.push_back(clampedVoxel(v, glm::ivec3(glm::floor(u))));
                     bricks.push_back(glm::clamp(glm::ivec3(glm::floor(u / double(brickSize))), glm::ivec3(0),
                                                 (v.dims() + brickSize - 1) / brickSize - 1));
                 }

@@ -21,6 +21,7 @@
 #include <functional>
 #include <string>
 
+#include "support/cpu_sampling.h"
 #include "support/gl_fixture.h"
 #include "voxlab/gradients.h"
 
@@ -44,11 +45,6 @@ Volume fieldVolume(glm::ivec3 dims, glm::dvec3 spacing, const Field& field) {
 
 // --- The oracle estimators, at voxel (i,j,k) -------------------------------
 
-double voxel(const Volume& v, glm::ivec3 p) {
-    p = glm::clamp(p, glm::ivec3(0), v.dims() - 1);
-    return v.value(p.x, p.y, p.z);
-}
-
 // d f / d(world) along `axis` at voxel p: central inside, one-sided at the
 // two faces, 0 on an axis one voxel thick (nothing to difference).
 double axisDerivative(const Volume& v, glm::ivec3 p, int axis) {
@@ -57,9 +53,9 @@ double axisDerivative(const Volume& v, glm::ivec3 p, int axis) {
     glm::ivec3 prev = p, next = p;
     --prev[axis], ++next[axis];
     if (n == 1) return 0.0;
-    if (p[axis] == 0) return (voxel(v, next) - voxel(v, p)) / h;
-    if (p[axis] == n - 1) return (voxel(v, p) - voxel(v, prev)) / h;
-    return (voxel(v, next) - voxel(v, prev)) / (2.0 * h);
+    if (p[axis] == 0) return (clampedVoxel(v, next) - clampedVoxel(v, p)) / h;
+    if (p[axis] == n - 1) return (clampedVoxel(v, p) - clampedVoxel(v, prev)) / h;
+    return (clampedVoxel(v, next) - clampedVoxel(v, prev)) / (2.0 * h);
 }
 
 glm::dvec3 oracleCentral(const Volume& v, glm::ivec3 p) {
@@ -412,33 +408,7 @@ TEST_P(GpuGradients, QuadraticFieldShowsTheDiscreteEstimatorAtVoxelCentres) {
 // centres [h/2, extent - h/2], over the distance left between them; Sobel
 // averages that over the 3 x 3 parallel lines at +-1 voxel across (not
 // clamped: the sampler's clamp-to-edge continues the border voxels
-// outwards). Written here with a trilinear interpolation of its own.
-
-double trilinear(const Volume& v, glm::dvec3 p) {
-    const glm::dvec3 u = p / v.spacing() - 0.5;  // voxel centres on integers
-    const glm::dvec3 base = glm::floor(u), w = u - base;
-    double sum = 0.0;
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::ivec3 bit((corner >> 0) & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-        double weight = 1.0;
-        for (int a = 0; a < 3; ++a) weight *= bit[a] ? w[a] : 1.0 - w[a];
-        sum += weight * voxel(v, glm::ivec3(base) + bit);
-    }
-    return sum;
-}
-
-double lineDerivative(const Volume& v, glm::dvec3 p, int axis) {
-    const double h = v.spacing()[axis];
-    glm::dvec3 lo = p, hi = p;
-    lo[axis] = std::clamp(p[axis] - h, 0.5 * h, v.extent()[axis] - 0.5 * h);
-    hi[axis] = std::clamp(p[axis] + h, 0.5 * h, v.extent()[axis] - 0.5 * h);
-    if (hi[axis] <= lo[axis]) return 0.0;
-    return (trilinear(v, hi) - trilinear(v, lo)) / (hi[axis] - lo[axis]);
-}
-
-glm::dvec3 pointCentral(const Volume& v, glm::dvec3 p) {
-    return glm::dvec3(lineDerivative(v, p, 0), lineDerivative(v, p, 1), lineDerivative(v, p, 2)) * v.minSpacing();
-}
+// outwards). Central differences come from tests/support/cpu_sampling.h.
 
 glm::dvec3 pointSobel(const Volume& v, glm::dvec3 p) {
     glm::dvec3 g(0.0);
@@ -450,7 +420,7 @@ glm::dvec3 pointSobel(const Volume& v, glm::dvec3 p) {
                 glm::dvec3 q = p;
                 q[a] += da * v.spacing()[a];
                 q[b] += db * v.spacing()[b];
-                g[axis] += weight[da + 1] * weight[db + 1] / 16.0 * lineDerivative(v, q, axis);
+                g[axis] += weight[da + 1] * weight[db + 1] / 16.0 * cpuLineDerivative(v, q, axis);
             }
     }
     return g * v.minSpacing();
@@ -524,7 +494,7 @@ TEST_P(GpuGradients, NonLinearFieldMatchesTheDefinitionBetweenVoxels) {
                 if (glm::any(glm::lessThan(p, margin)) || glm::any(glm::greaterThan(p, v.extent() - margin)))
                     continue;
                 const double g = glm::length(c.precomputed ? interpolatedVoxelGradient(v, p, c.sobel)
-                                                           : c.sobel ? pointSobel(v, p) : pointCentral(v, p));
+                                                           : c.sobel ? pointSobel(v, p) : cpuCentralGradient(v, p));
                 want.push_back({{px, py}, g});
                 biggest = std::max(biggest, g);
             }

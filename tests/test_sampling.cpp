@@ -17,44 +17,20 @@
 #include <sstream>
 #include <string>
 
+#include "support/cpu_sampling.h"
 #include "support/gl_fixture.h"
 #include "voxlab/camera.h"
 
 namespace voxlab::testing {
 namespace {
 
-// The voxel value with indices clamped to the grid (the border value
-// continues outwards, like CLAMP_TO_EDGE).
-double clampedValue(const Volume& v, int i, int j, int k) {
-    const glm::ivec3 d = v.dims();
-    return v.value(std::clamp(i, 0, d.x - 1), std::clamp(j, 0, d.y - 1), std::clamp(k, 0, d.z - 1));
-}
-
 // Continuous voxel coordinates of a world point: voxel i spans [i, i+1].
 glm::dvec3 voxelCoordinates(const Volume& v, glm::dvec3 p) { return p / v.spacing(); }
-
-// Trilinear interpolation between the 8 voxel centres around p. With centres
-// at i + 1/2, u - 1/2 puts them on integers; the lower corner is its floor and
-// the fractional part weighs the upper neighbour on each axis.
-double cpuTrilinear(const Volume& v, glm::dvec3 p) {
-    const glm::dvec3 u = voxelCoordinates(v, p) - 0.5;
-    const glm::dvec3 lower = glm::floor(u);
-    const glm::dvec3 w = u - lower;
-    const glm::ivec3 i0(lower);
-    double sum = 0.0;
-    for (int dz = 0; dz <= 1; ++dz)
-        for (int dy = 0; dy <= 1; ++dy)
-            for (int dx = 0; dx <= 1; ++dx) {
-                const double weight = (dx ? w.x : 1.0 - w.x) * (dy ? w.y : 1.0 - w.y) * (dz ? w.z : 1.0 - w.z);
-                sum += weight * clampedValue(v, i0.x + dx, i0.y + dy, i0.z + dz);
-            }
-    return sum;
-}
 
 // The voxel whose cell [i, i+1]^3 contains p.
 double cpuNearest(const Volume& v, glm::dvec3 p) {
     const glm::ivec3 i(glm::floor(voxelCoordinates(v, p)));
-    return clampedValue(v, i.x, i.y, i.z);
+    return clampedVoxel(v, i);
 }
 
 // Distance (in voxels) from p to the nearest cell boundary on any axis.

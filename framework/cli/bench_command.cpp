@@ -83,8 +83,7 @@ int benchCommand(int argc, char** argv) {
     if (warmup < 0 || warmup > 1000) throw Error("option --warmup: must be in 0..1000");
     const Renderer& renderer = rendererRegistry().get(scene.renderer);
     renderer.resolveParameters(scene.parameters);
-    // Samples are counted for ray casters without a cutting plane.
-    const bool counted = !renderer.objectOrder() && !scene.cuttingPlane;
+    const bool counted = samplesCountable(scene);
 
     const Volume volume = loadVolume(scene.dataset);
     auto context = createHeadlessContext(parseHeadlessBackend(args.get("gl").value_or("auto")));

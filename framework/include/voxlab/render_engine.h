@@ -42,6 +42,11 @@ namespace voxlab {
 
 class EngineDrawContext;
 
+// Whether RenderEngine::countSamples() can count a scene's samples: its
+// renderer casts rays (slices take no samples along rays) and it has no
+// cutting plane (whose two halves are composed into one image).
+bool samplesCountable(const Scene& scene);
+
 class RenderEngine {
 public:
     // `implementationRoot` is searched first for stage shaders: the project's
@@ -85,8 +90,9 @@ public:
     // The samples `scene` takes in all, summed over its pixels: the scene is
     // rendered once with every sample_position() counted (see
     // shaders/voxlab/sample_counter.glsl), with skipping and early
-    // termination as the scene has them. Ray-casting renderers only, no
-    // cutting plane; the image in the offscreen target is the counts.
+    // termination as the scene has them. Only for scenes samplesCountable()
+    // accepts (voxlab::Error otherwise); the image in the offscreen target
+    // is the counts.
     double countSamples(const Scene& scene);
 
 private:

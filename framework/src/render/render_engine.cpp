@@ -500,10 +500,15 @@ Image RenderEngine::render(const Scene& scene) {
     return readBack();
 }
 
+bool samplesCountable(const Scene& scene) {
+    const Renderer* renderer = rendererRegistry().find(scene.renderer);
+    return renderer && !renderer->objectOrder() && !scene.cuttingPlane;
+}
+
 double RenderEngine::countSamples(const Scene& scene) {
-    if (scene.cuttingPlane) throw Error("counting samples: scenes with a cutting plane are not supported");
-    if (rendererRegistry().get(scene.renderer).objectOrder())
-        throw Error("counting samples: '" + scene.renderer + "' draws slices, it does not take samples along rays");
+    if (!samplesCountable(scene))
+        throw Error("counting samples: '" + scene.renderer +
+                    "' scene: only ray-casting renderers without a cutting plane take samples that can be counted");
     countingSamples_ = true;
     try {
         renderOffscreen(scene);

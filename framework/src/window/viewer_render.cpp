@@ -55,13 +55,6 @@ double renderSide(Side& side, const Scene& scene, bool countSamples) {
     return 0.0;
 }
 
-// Whether the samples view can show this scene: ray casters only (slices
-// take no samples along rays), and no cutting plane (two passes composed).
-bool countable(const Scene& scene) {
-    const Renderer* renderer = rendererRegistry().find(scene.renderer);
-    return renderer && !renderer->objectOrder() && !scene.cuttingPlane;
-}
-
 }  // namespace
 
 void setImplementation(Side& side, const std::string& root, const Volume& volume) {
@@ -127,7 +120,8 @@ void renderFrame(State& s) {
     const Scene mainScene = sideScene(s, s.main, w, h, reduced);
     Scene otherScene;
     if (s.split != SplitMode::Off) otherScene = sideScene(s, s.other, w, h, reduced);
-    s.samplesShown = s.showSamples && countable(mainScene) && (s.split == SplitMode::Off || countable(otherScene));
+    s.samplesShown =
+        s.showSamples && samplesCountable(mainScene) && (s.split == SplitMode::Off || samplesCountable(otherScene));
     s.samplesTaken = renderSide(s.main, mainScene, s.samplesShown);
     if (s.split != SplitMode::Off) {
         if (!s.other.engine) setImplementation(s.other, "", *s.volume);

@@ -64,7 +64,7 @@ int skip_forward(Ray ray, int m, int test, float value) {
     if (u_skipping == 0) return m;
     int n = sample_count(ray);
     while (m < n) {
-        ivec3 b = brick_at(ray.origin + (ray.t_entry + (float(m) + 0.5) * u_step) * ray.direction);
+        ivec3 b = brick_at(sample_location(ray, m));
         if (brick_counts(b, test, value)) return m;
         // The first sample at or past the exit: t_entry + (k + 1/2) step >= t.
         float t = brick_span(ray, b).y;
@@ -100,7 +100,7 @@ int next_sample_below(Ray ray, int m, float value) {
 int last_visible_sample(Ray ray, int m) {
     if (u_skipping == 0) return m;
     while (m >= 0) {
-        ivec3 b = brick_at(ray.origin + (ray.t_entry + (float(m) + 0.5) * u_step) * ray.direction);
+        ivec3 b = brick_at(sample_location(ray, m));
         if (brick_counts(b, VOXLAB_BRICK_VISIBLE, 0.0)) return m;
         // The last sample at or before the entry: t_entry + (k + 1/2) step <= t.
         float t = brick_span(ray, b).x;

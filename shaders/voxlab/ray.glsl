@@ -94,10 +94,16 @@ int sample_count(Ray ray) {
     return int(floor((ray.t_exit - ray.t_entry) / u_step + 0.5));
 }
 
+// Where sample m lies, without counting it as taken (for the empty-space
+// walk, which looks at a sample's brick before anyone samples it).
+vec3 sample_location(Ray ray, int m) {
+    return ray.origin + (ray.t_entry + (float(m) + 0.5) * u_step) * ray.direction;
+}
+
 // The world position of sample m.
 vec3 sample_position(Ray ray, int m) {
     if (u_count_samples != 0) voxlab_samples_taken += 1;
-    return ray.origin + (ray.t_entry + (float(m) + 0.5) * u_step) * ray.direction;
+    return sample_location(ray, m);
 }
 
 // A pseudo-random number in [0, 1) that differs from pixel to pixel and is

@@ -3,9 +3,14 @@
 // writes where it should not.
 #include <gtest/gtest.h>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
 #include <signal.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -132,5 +137,133 @@ TEST(ChildProcess, AMissingProgramIsAnExitStatus) {
     EXPECT_THROW(runChild({}, {}), Error);
 }
 
+
+// --- Isolation (ChildLimits::isolate): what a hostile submission tries. ---
+
+// Processes whose command line holds `token`, anywhere on the machine.
+int processesWith(const std::string& token) {
+    int count = 0;
+    for (const auto& entry : fs::directory_iterator("/proc")) {
+        const std::string name = entry.path().filename().string();
+        if (name.empty() || !std::isdigit(static_cast<unsigned char>(name[0])) || name == std::to_string(getpid()))
+            continue;
+        std::ifstream in(entry.path() / "cmdline", std::ios::binary);
+        std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (cmdline.find(token) != std::string::npos && !processGone(std::stoi(name))) ++count;
+    }
+    return count;
+}
+
+ChildLimits isolated(double seconds = 10) {
+    ChildLimits limits;
+    limits.isolate = true;
+    limits.seconds = seconds;
+    return limits;
+}
+
+bool hasLayer(const ChildResult& r, const std::string& layer) {
+    return std::find(r.sandbox.begin(), r.sandbox.end(), layer) != r.sandbox.end();
+}
+
+TEST(ChildIsolation, DetachedDescendantsDieWithTheChild) {
+    const std::string token = "voxlab_detached_" + std::to_string(getpid());
+    // setsid leaves the process group, so killing the group alone misses it.
+    const std::string script = "setsid sh -c 'sleep 300; echo " + token + "' & setsid sh -c 'sleep 300; echo " +
+                               token + "' & sleep 0.3; echo started";
+    const ChildResult free = shell(script);  // without isolation they outlive it (the test can fail)
+    EXPECT_EQ(processesWith(token), 2) << free.output;
+    std::system(("pkill -f " + token).c_str());
+    const ChildResult r = shell(script, isolated());
+    EXPECT_TRUE(r.succeeded()) << r.output;
+    EXPECT_TRUE(hasLayer(r, "pid, network and ipc namespaces")) << r.output;
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    EXPECT_EQ(processesWith(token), 0);
+    // Also when the time limit ends it.
+    const ChildResult t = shell(script + "; sleep 300", isolated(1.0));
+    EXPECT_TRUE(t.timedOut);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    EXPECT_EQ(processesWith(token), 0);
+}
+
+TEST(ChildIsolation, CannotSignalTheParent) {
+    // If the sandbox failed, this test process would die (and the test fail).
+    ChildLimits limits = isolated();
+    limits.environment["VOXLAB_PARENT"] = std::to_string(getpid());
+    const ChildResult r = shell("kill -9 $VOXLAB_PARENT; echo \"kill: $?\"; kill -9 $PPID; echo \"ppid $PPID\"",
+                                limits);
+    EXPECT_NE(r.output.find("kill: 1"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("ppid 0"), std::string::npos) << r.output;  // no parent inside its namespace
+}
+
+TEST(ChildIsolation, HasNoNetwork) {
+    const int server = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ASSERT_EQ(bind(server, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+    socklen_t len = sizeof addr;
+    getsockname(server, reinterpret_cast<sockaddr*>(&addr), &len);
+    listen(server, 4);
+    const std::string port = std::to_string(ntohs(addr.sin_port));
+    const std::string script = "echo payload > /dev/tcp/127.0.0.1/" + port + " && echo sent";
+    auto received = [&] {
+        pollfd p = {server, POLLIN, 0};
+        if (poll(&p, 1, 300) <= 0) return false;
+        const int c = accept(server, nullptr, nullptr);
+        char buf[16] = {};
+        const bool got = read(c, buf, sizeof buf) > 0;
+        close(c);
+        return got;
+    };
+    const ChildResult free = runChild({"/bin/bash", "-c", script}, {});
+    EXPECT_TRUE(received()) << free.output;  // the channel works without isolation
+    const ChildResult r = runChild({"/bin/bash", "-c", script}, isolated());
+    EXPECT_FALSE(received()) << r.output;
+    EXPECT_EQ(r.output.find("sent"), std::string::npos) << r.output;
+    close(server);
+}
+
+TEST(ChildIsolation, ReadsOnlyWhatItIsGiven) {
+    if (!sandboxAvailable()) GTEST_SKIP() << "this kernel has no Landlock";
+    const fs::path open = freshFolder("readable"), secret = freshFolder("secret");
+    std::ofstream(open / "a.txt") << "visible";
+    std::ofstream(secret / "b.txt") << "hidden";
+    ChildLimits limits = isolated();
+    limits.readable = {open.string()};
+    const std::string script = "cat " + (open / "a.txt").string() + " " + (secret / "b.txt").string() +
+                               "; ls " + secret.string() + "; echo x > " + (open / "c.txt").string();
+    const ChildResult r = shell(script, limits);
+    EXPECT_TRUE(hasLayer(r, "landlock reads"));
+    EXPECT_NE(r.output.find("visible"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("hidden"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("cannot open directory"), std::string::npos) << r.output;  // nor list it
+    EXPECT_FALSE(fs::exists(open / "c.txt"));  // readable is not writable
+    EXPECT_NE(shell(script).output.find("hidden"), std::string::npos);  // the test can fail
+    fs::remove_all(open);
+    fs::remove_all(secret);
+}
+
+TEST(ChildIsolation, ProcessCountIsLimited) {
+    ChildLimits limits = isolated(20);
+    limits.maxProcesses = 16;
+    // 60 sleepers at once; each started one prints a line.
+    const ChildResult r = shell("for i in $(seq 60); do (echo up; exec sleep 30) & done 2>/dev/null; sleep 1; "
+                                "kill -9 -1 2>/dev/null", limits);
+    int up = 0;
+    for (std::size_t at = r.output.find("up"); at != std::string::npos; at = r.output.find("up", at + 2)) ++up;
+    EXPECT_TRUE(hasLayer(r, "pids cgroup") || hasLayer(r, "process limit (RLIMIT_NPROC)")) << r.output;
+    EXPECT_LT(up, 16) << r.output;
+    EXPECT_GT(up, 0) << r.output;
+}
+
+TEST(ChildIsolation, ResultsChannelIsFileDescriptorThree) {
+    ChildLimits limits = isolated();
+    limits.resultsBytes = 8;
+    const ChildResult r = shell("printf 'one two three' >&3; echo done", limits);
+    EXPECT_EQ(r.results, "one two ");
+    EXPECT_TRUE(r.resultsTruncated);
+    EXPECT_NE(r.output.find("done"), std::string::npos);
+    EXPECT_EQ(shell("printf x >&3 || echo no-fd-3").output.find("no-fd-3") != std::string::npos, true);
+}
 }  // namespace
 }  // namespace voxlab::testing

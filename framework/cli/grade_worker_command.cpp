@@ -1,13 +1,14 @@
 // voxlab grade-worker: the child process that runs one stage of one
 // implementation for the grader (grader.h). Not meant to be run by hand.
 //
-// It renders each of the stage's grading scenes to OUT/NAME{suffix}.png and
-// runs each function check into OUT/checks/NAME{suffix}.json. A scene or
-// check that fails writes NAME{suffix}.error.json instead:
-// {"kind": "compile_error" | "not_implemented" | "error", "message": "..."}.
-// Work that hangs or crashes is the parent's to notice.
+// It renders each of the stage's grading scenes and runs each function
+// check, and sends every result, or the error that stopped it, through the
+// results channel (fd 3, voxlab/worker_results.h). It writes no files: the
+// grader starts it in a sandbox where it cannot (child_process.h). Work
+// that hangs or crashes is the parent's to notice.
+#include <fcntl.h>
+
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 
@@ -23,40 +24,19 @@
 #include "voxlab/shader.h"
 #include "voxlab/stage_library.h"
 #include "voxlab/volume.h"
+#include "voxlab/worker_results.h"
 
 namespace voxlab::cli {
 
 namespace {
 
-namespace fs = std::filesystem;
-
-void writeError(const fs::path& path, const std::exception& e) {
-    std::string kind = "error";
-    if (dynamic_cast<const ShaderError*>(&e)) kind = "compile_error";
-    if (dynamic_cast<const NotImplemented*>(&e)) kind = "not_implemented";
-    std::ofstream(path) << nlohmann::json{{"kind", kind}, {"message", e.what()}}.dump(2) << "\n";
+std::string errorKind(const std::exception& e) {
+    if (dynamic_cast<const ShaderError*>(&e)) return "compile_error";
+    if (dynamic_cast<const NotImplemented*>(&e)) return "not_implemented";
+    return "error";
 }
 
-}  // namespace
-
-int gradeWorkerCommand(int argc, char** argv) {
-    const std::vector<OptionSpec> specs = {
-        {"stage", "S", "the stage"},
-        {"manifest-root", "DIR", "where S/grading.json is"},
-        {"implementation", "DIR", "the implementation root"},
-        {"out", "DIR", "output folder"},
-        {"suffix", "TEXT", "appended to output names"},
-        {"stage-library", "SO", "C++ stages to load (repeatable, later ones win)"}};
-    const Args args(specs, argc, argv, 2, "grade-worker");
-    for (const char* required : {"stage", "manifest-root", "implementation", "out"})
-        if (!args.get(required)) throw Error(std::string("grade-worker: --") + required + " is required");
-    const std::string stage = *args.get("stage"), suffix = args.get("suffix").value_or("");
-    const fs::path out = *args.get("out");
-    const std::string implementation = *args.get("implementation");
-    const StageManifest manifest = loadStageManifest(*args.get("manifest-root"), stage);
-    for (const std::string& library : args.getAll("stage-library")) loadStageLibrary(library);
-
-    auto context = createHeadlessContext();
+void renderScenes(const StageManifest& manifest, const std::string& implementation, WorkerResultWriter& out) {
     RenderEngine engine(implementation);
     std::map<std::string, Volume> volumes;
     for (const GradedScene& graded : manifest.scenes) {
@@ -69,18 +49,42 @@ int gradeWorkerCommand(int argc, char** argv) {
             auto found = volumes.find(scene.dataset);
             if (found == volumes.end()) found = volumes.emplace(scene.dataset, loadVolume(scene.dataset)).first;
             engine.setVolume(found->second);
-            savePng(engine.render(scene), (out / (graded.name + suffix + ".png")).string());
+            out.image(graded.name, engine.render(scene));
         } catch (const std::exception& e) {
-            writeError(out / (graded.name + suffix + ".error.json"), e);
+            out.error("scene", graded.name, errorKind(e), e.what());
         }
     }
-    if (!manifest.checks.empty()) fs::create_directories(out / "checks");
+}
+
+}  // namespace
+
+int gradeWorkerCommand(int argc, char** argv) {
+    const std::vector<OptionSpec> specs = {
+        {"stage", "S", "the stage"},
+        {"manifest-root", "DIR", "where S/grading.json is"},
+        {"implementation", "DIR", "the implementation root"},
+        {"stage-library", "SO", "C++ stages to load (repeatable, later ones win)"},
+        {"graded-library", "SO", "the graded stage's C++, loaded last (with --graded)"},
+        {"graded", "", "the stage's own C++ functions come only from --graded-library"}};
+    const Args args(specs, argc, argv, 2, "grade-worker");
+    for (const char* required : {"stage", "manifest-root", "implementation"})
+        if (!args.get(required)) throw Error(std::string("grade-worker: --") + required + " is required");
+    if (fcntl(3, F_GETFD) == -1)
+        throw Error("grade-worker: no results channel on file descriptor 3 (it is started by voxlab grade)");
+    const std::string stage = *args.get("stage"), implementation = *args.get("implementation");
+    const StageManifest manifest = loadStageManifest(*args.get("manifest-root"), stage);
+    for (const std::string& library : args.getAll("stage-library")) loadStageLibrary(library);
+    if (args.has("graded")) clearStageFunctions(manifest.cppFunctions);
+    if (args.get("graded-library")) loadStageLibrary(*args.get("graded-library"));
+
+    WorkerResultWriter out(3);
+    auto context = createHeadlessContext();
+    renderScenes(manifest, implementation, out);
     for (const GradedCheck& check : manifest.checks) {
         try {
-            const nlohmann::json result = runFunctionCheck(check.name, implementation);
-            std::ofstream(out / "checks" / (check.name + suffix + ".json")) << result.dump() << "\n";
+            out.check(check.name, runFunctionCheck(check.name, implementation));
         } catch (const std::exception& e) {
-            writeError(out / "checks" / (check.name + suffix + ".error.json"), e);
+            out.error("check", check.name, errorKind(e), e.what());
         }
     }
     std::cout << "gl: " << context->description() << "\n";

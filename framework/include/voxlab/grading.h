@@ -9,8 +9,15 @@
 //     "about": "what the scenes test",
 //     "scenes": [ {"name": "bonsai_oblique", "scene": "scenes/bonsai_oblique.json",
 //                  "weight": 1, "tolerance": {"max_flip": 0.03, "why": "..."}} ],
-//     "checks": [ {"name": "phong_random", "weight": 1} ]     // function_checks.h
+//     "checks": [ {"name": "phong_random", "weight": 1} ],    // function_checks.h
+//     "files": ["mip.glsl"],                 // optional: the stage's source files
+//     "cpp_functions": ["planeBoxPolygon"]   // C++ stages: the functions it defines
 //   }
+//
+// A stage's files are what a submission hands in for it: by default the
+// .glsl, .frag, .vert and .cpp files of the manifest's folder. Only these
+// (and GLSL helpers beside them) are taken from a submission, and only its
+// .cpp files among them are compiled.
 //
 // A scene is rendered by the submission and by the reference (or read from
 // the shipped golden image) and compared on the 8-bit images:
@@ -69,6 +76,8 @@ struct StageManifest {
     double points = 10.0;
     std::vector<GradedScene> scenes;
     std::vector<GradedCheck> checks;
+    std::vector<std::string> files;         // the stage's source files, by name
+    std::vector<std::string> cppFunctions;  // stage_library.h names, for C++ stages
 };
 
 // The stages in teaching order (the folder names in reference/).

@@ -53,11 +53,15 @@ public:
     explicit ShaderLibrary(std::vector<std::string> searchPath);
     // The default path: [implementationRoot, <project>/reference,
     // <project>/shaders]. A stage the implementation root does not contain
-    // (a submission of one assignment) comes from the reference solution.
+    // (a submission of one assignment) comes from the reference solution;
+    // a stage folder it does contain is searched alone, so an empty or
+    // incomplete stage never borrows the reference's files.
     static ShaderLibrary forImplementation(const std::string& implementationRoot);
 
     const std::vector<std::string>& searchPath() const { return searchPath_; }
-    // Absolute path of `name`, first match on the search path; throws when absent.
+    // Absolute path of `name`, first match on the search path; throws
+    // ShaderError when absent, when `name` is absolute or has a ".." part,
+    // or when the file found lies outside its folder through a link.
     std::string resolve(const std::string& name, const std::string& includedFrom = "") const;
     PreprocessedShader preprocess(const std::string& name, const ShaderConstants& constants = {}) const;
 

@@ -25,6 +25,15 @@ struct CppStages {
 // The table in use: the linked-in stages unless a library was loaded.
 const CppStages& cppStages();
 
+// Whether `name` is a function of the table above ("planeBoxPolygon").
+bool isStageFunction(const std::string& name);
+
+// Points the named functions at stubs that throw NotImplemented. The grader
+// does this for the stage being graded before loading the submission's
+// library, so that a function the submission does not define is not
+// implemented, rather than quietly the linked-in reference.
+void clearStageFunctions(const std::vector<std::string>& names);
+
 // Loads a stage library (dlopen) and takes the functions it defines.
 // Returns their names. Throws voxlab::Error naming the library when it
 // cannot be loaded (an undefined symbol, say).

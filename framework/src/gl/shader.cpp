@@ -171,15 +171,57 @@ ShaderLibrary ShaderLibrary::forImplementation(const std::string& implementation
     return ShaderLibrary(path);
 }
 
+namespace {
+
+// An include name is a relative path that stays inside the folder it is
+// found in: no absolute paths, no "..", no empty or "." parts.
+void checkIncludeName(const std::string& name, const std::string& where) {
+    bool ok = !name.empty() && name[0] != '/' && name.find('\\') == std::string::npos;
+    for (std::size_t start = 0; ok && start <= name.size();) {
+        const std::size_t end = std::min(name.find('/', start), name.size());
+        const std::string part = name.substr(start, end - start);
+        ok = !part.empty() && part != "." && part != "..";
+        start = end + 1;
+    }
+    if (!ok)
+        throw ShaderError(where + "shader '" + name +
+                          "': an #include names a file inside the implementation or shaders/ folder "
+                          "by a relative path without '..'");
+}
+
+// The real path of `path` when it lies beneath `dir` (links resolved), else "".
+std::string confinedPath(const std::string& dir, const std::string& path) {
+    std::error_code ec;
+    const std::filesystem::path realDir = std::filesystem::canonical(dir, ec);
+    if (ec) return "";
+    const std::filesystem::path real = std::filesystem::canonical(path, ec);
+    if (ec) return "";
+    const std::string prefix = realDir.string() + "/";
+    return real.string().compare(0, prefix.size(), prefix) == 0 ? path : "";
+}
+
+}  // namespace
+
 std::string ShaderLibrary::resolve(const std::string& name, const std::string& includedFrom) const {
-    for (const std::string& dir : searchPath_) {
-        const std::string path = dir + "/" + name;
-        if (isFile(path)) return path;
+    const std::string where = includedFrom.empty() ? "" : includedFrom + ": ";
+    checkIncludeName(name, where);
+    // A stage the first folder (the implementation) has is its alone: an
+    // empty or incomplete stage folder does not borrow a later folder's files.
+    const std::string top = name.substr(0, name.find('/'));
+    const bool owned = name.find('/') != std::string::npos && !searchPath_.empty() &&
+                       std::filesystem::is_directory(searchPath_.front() + "/" + top);
+    const std::size_t folders = owned ? 1 : searchPath_.size();
+    for (std::size_t i = 0; i < folders; ++i) {
+        const std::string path = searchPath_[i] + "/" + name;
+        if (!isFile(path)) continue;
+        if (confinedPath(searchPath_[i], path).empty())
+            throw ShaderError(where + "shader '" + name + "' leads outside " + displayPath(searchPath_[i]) +
+                              " (a link?)");
+        return path;
     }
     std::string searched;
-    for (const std::string& dir : searchPath_) searched += (searched.empty() ? "" : ", ") + displayPath(dir);
-    throw ShaderError((includedFrom.empty() ? "" : includedFrom + ": ") + "shader '" + name +
-                      "' not found (searched: " + searched + ")");
+    for (std::size_t i = 0; i < folders; ++i) searched += (searched.empty() ? "" : ", ") + displayPath(searchPath_[i]);
+    throw ShaderError(where + "shader '" + name + "' not found (searched: " + searched + ")");
 }
 
 PreprocessedShader ShaderLibrary::preprocess(const std::string& name, const ShaderConstants& constants) const {

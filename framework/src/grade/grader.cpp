@@ -14,6 +14,8 @@
 #include <thread>
 
 #include "stage_job.h"
+#include "voxlab/atomic_file.h"
+#include "voxlab/image.h"
 #include "voxlab/child_process.h"
 #include "voxlab/error.h"
 #include "voxlab/html_report.h"
@@ -93,6 +95,25 @@ std::vector<std::string> chosenStages(const GraderOptions& options) {
     return gradedStages(options.referenceRoot);
 }
 
+// Renders one stage of the reference and saves what it sent as the
+// expected outputs (EXPECTED/<stage>/<scene>.png, checks/<check>.json).
+void renderExpectedStage(const std::string& stage, const GraderOptions& options) {
+    const StageManifest manifest = loadStageManifest(options.referenceRoot, stage);
+    const fs::path out = fs::path(options.expectedDir) / stage;
+    const StageRun run{stage, options.referenceRoot, (fs::path(options.expectedDir) / ".work" / stage).string(), false};
+    fs::remove_all(out);
+    const RunOutcome outcome = grading::runStage(run, manifest, options);
+    if (!outcome.compiled) throw Error(outcome.compileLog);
+    if (!outcome.finished) throw Error("the reference " + outcome.ended + "\n" + outcome.output);
+    if (!outcome.results.problem.empty()) throw Error(outcome.results.problem);
+    for (const auto& [key, error] : outcome.results.errors)
+        throw Error("the reference failed: " + key + ": " + error.value("message", ""));
+    fs::create_directories(out / "checks");
+    for (const auto& [name, image] : outcome.results.images) savePng(image, (out / (name + ".png")).string());
+    for (const auto& [name, result] : outcome.results.checks)
+        writeFileAtomically((out / "checks" / (name + ".json")).string(), result.dump() + "\n");
+}
+
 }  // namespace
 
 void renderExpectedOutputs(const GraderOptions& given) {
@@ -119,17 +140,12 @@ void renderExpectedOutputs(const GraderOptions& given) {
     Progress progress(int(stages.size()), options.progress);
     std::vector<std::string> failures(stages.size());
     parallelFor(int(stages.size()), options.jobs, [&](int i) {
-        const std::string& stage = stages[i];
-        StageRun run{stage, options.referenceRoot, (fs::path(options.expectedDir) / stage).string(),
-                     (fs::path(options.expectedDir) / ".work" / stage).string(), ""};
-        fs::remove_all(run.outputDir);
-        const RunOutcome outcome = grading::runStage(run, options);
-        if (!outcome.compiled) failures[i] = stage + ": " + outcome.compileLog;
-        else if (!outcome.finished) failures[i] = stage + ": the reference " + outcome.ended + "\n" + outcome.output;
-        for (const auto& entry : fs::directory_iterator(run.outputDir))
-            if (entry.path().string().find(".error.json") != std::string::npos)
-                failures[i] = stage + ": the reference failed: " + entry.path().filename().string();
-        progress.done("reference rendered: " + stage);
+        try {
+            renderExpectedStage(stages[i], options);
+        } catch (const std::exception& e) {
+            failures[i] = stages[i] + ": " + e.what();
+        }
+        progress.done("reference rendered: " + stages[i]);
     });
     fs::remove_all(fs::path(options.expectedDir) / ".work");
     for (const std::string& f : failures)
@@ -167,16 +183,16 @@ std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, c
         try {
             const StageManifest manifest = loadStageManifest(options.referenceRoot, job.stage);
             const fs::path report = absolute(sub.reportDir);
-            StageRun run{job.stage, absolute(sub.folder), (report / job.stage).string(),
-                         (report / ".work" / job.stage).string(), ".submission"};
-            fs::remove_all(run.outputDir);
+            const StageRun run{job.stage, absolute(sub.folder), (report / ".work" / job.stage).string(),
+                               options.isolateStage};
+            fs::remove_all(report / job.stage);
             if (!fs::is_directory(fs::path(sub.folder) / job.stage)) {
                 entry = {{"stage", job.stage}, {"title", manifest.title}, {"score", 0.0},
-                         {"max_score", manifest.points}, {"status", "error"},
+                         {"max_score", manifest.points}, {"status", "not_implemented"},
                          {"message", "the submission has no folder " + job.stage + "/"}};
             } else {
-                const RunOutcome outcome = grading::runStage(run, options);
-                entry = grading::scoreStage(run, outcome, manifest, options, sub.folder);
+                const RunOutcome outcome = grading::runStage(run, manifest, options);
+                entry = grading::scoreStage(run, outcome, manifest, options, (report / job.stage).string());
             }
             fs::remove_all(run.workDir);
         } catch (const std::exception& e) {
@@ -198,8 +214,7 @@ std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, c
         const Submission& sub = submissions[s];
         json report = {{"submission", absolute(sub.folder)}, {"name", sub.name}, {"graded_at", isoTime()},
                        {"mode", options.shipped || !options.isolateStage ? "check" : "grade"},
-                       {"sandbox", sandboxAvailable() ? "writes confined to the report folder (Landlock)"
-                                                      : "no write confinement on this kernel"},
+                       {"sandbox", sandboxLayers()},
                        {"elapsed_s", seconds[s]}};
         double score = 0.0, maxScore = 0.0;
         json graded = json::array();
@@ -213,8 +228,9 @@ std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, c
         report["max_score"] = maxScore;
         report["stages"] = graded;
         fs::remove_all(fs::path(sub.reportDir) / ".work");
-        std::ofstream(fs::path(sub.reportDir) / "report.json") << report.dump(2) << "\n";
-        std::ofstream(fs::path(sub.reportDir) / "results.json") << gradescopeResults(report).dump(2) << "\n";
+        writeFileAtomically((fs::path(sub.reportDir) / "report.json").string(), report.dump(2) + "\n");
+        writeFileAtomically((fs::path(sub.reportDir) / "results.json").string(),
+                            gradescopeResults(report).dump(2) + "\n");
         writeHtmlReport(report, sub.reportDir);
         reports.push_back(report);
     }

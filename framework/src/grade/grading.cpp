@@ -12,6 +12,7 @@
 #include "voxlab/error.h"
 #include "voxlab/flip.h"
 #include "voxlab/image_metrics.h"
+#include "voxlab/stage_library.h"
 
 namespace voxlab {
 
@@ -58,6 +59,41 @@ Tolerance readTolerance(const json& j, const std::string& where) {
 
 }  // namespace
 
+namespace {
+
+std::vector<std::string> stringList(const json& j, const char* key, const std::string& path) {
+    std::vector<std::string> list;
+    if (!j.contains(key)) return list;
+    if (!j.at(key).is_array()) throw Error(path + ": " + key + ": expected an array of names");
+    for (const json& e : j.at(key)) {
+        if (!e.is_string()) throw Error(path + ": " + key + ": expected an array of names");
+        list.push_back(e.get<std::string>());
+    }
+    return list;
+}
+
+bool isSourceFile(const std::filesystem::path& p) {
+    const std::string ext = p.extension().string();
+    return ext == ".glsl" || ext == ".frag" || ext == ".vert" || ext == ".cpp";
+}
+
+// The manifest's "files", or the source files beside it; plain names only.
+std::vector<std::string> stageFiles(const json& j, const std::filesystem::path& folder, const std::string& path) {
+    std::vector<std::string> files = stringList(j, "files", path);
+    if (!j.contains("files")) {
+        std::error_code ec;
+        for (const auto& entry : std::filesystem::directory_iterator(folder, ec))
+            if (entry.is_regular_file() && isSourceFile(entry.path())) files.push_back(entry.path().filename());
+        std::sort(files.begin(), files.end());
+    }
+    for (const std::string& f : files)
+        if (f.empty() || f[0] == '.' || f.find_first_of("/\\") != std::string::npos || !isSourceFile(f))
+            throw Error(path + ": files: '" + f + "' is not a plain .glsl, .frag, .vert or .cpp file name");
+    return files;
+}
+
+}  // namespace
+
 StageManifest loadStageManifest(const std::string& root, const std::string& stage) {
     const std::filesystem::path folder = std::filesystem::path(root) / stage;
     const std::string path = (folder / "grading.json").string();
@@ -95,6 +131,10 @@ StageManifest loadStageManifest(const std::string& root, const std::string& stag
             m.checks.push_back({text(c, "name", where, true), number(c, "weight", 1.0, where)});
         }
     }
+    m.files = stageFiles(j, folder, path);
+    m.cppFunctions = stringList(j, "cpp_functions", path);
+    for (const std::string& f : m.cppFunctions)
+        if (!isStageFunction(f)) throw Error(path + ": cpp_functions: '" + f + "' is not a C++ stage function");
     return m;
 }
 

@@ -274,7 +274,11 @@ std::string header(const json& results, const json& stages) {
     meta("Graded", readableTime(html::text(results, "graded_at")));
     meta("Against", mode == "check" ? "the shipped golden images" : mode == "grade" ? "the reference solution" : "");
     meta("Machine", html::text(results, "machine"));
-    meta("Isolation", html::text(results, "sandbox"));
+    std::string isolation;
+    if (results.contains("sandbox") && results["sandbox"].is_array())
+        for (const json& layer : results["sandbox"])
+            if (layer.is_string()) isolation += (isolation.empty() ? "" : ", ") + layer.get<std::string>();
+    meta("Isolation", isolation.empty() ? "none on this machine" : isolation);
     if (auto seconds = html::number(results, "elapsed_s")) meta("Time", html::formatSeconds(*seconds));
     out += "</dl></div>\n<div class=\"total\"><div class=\"total-score\">" +
            (score ? html::formatNumber(*score, 2) : std::string("\u2013"));

@@ -1,14 +1,32 @@
-// voxlab grader: one stage of one implementation in a child process.
+// voxlab grader: one stage of one implementation in a sandboxed child
+// process (see stage_job.h).
+//
+// What the worker may read is a snapshot made here, in its own work folder:
+//   impl/<stage>/   the graded stage, only the manifest's files (and GLSL
+//                   helpers beside them) from the submission, each checked
+//                   to be a regular file under the size limit;
+//   impl/<other>/   the other stages' GLSL from the reference, so that one
+//                   mistake is not counted twice;
+//   task/<stage>/   the manifest and its scenes (no expected outputs);
+//   lib/            the stage libraries (the reference's C++ stages, the
+//                   submission's built from its named .cpp files).
+// Plus shaders/, the datasets and the system. It writes nowhere: its results
+// come back through the results channel (worker_results.h).
 #include "stage_job.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <thread>
 
+#include "voxlab/atomic_file.h"
 #include "voxlab/child_process.h"
 #include "voxlab/error.h"
+#include "voxlab/scene.h"
 #include "voxlab/stage_library.h"
 
 namespace voxlab::grading {
@@ -25,87 +43,204 @@ std::string voxlabExecutable(const GraderOptions& options) {
 
 namespace {
 
-// A submission's file larger than this is not copied (it is no shader).
-constexpr std::uintmax_t kMaxSourceBytes = 4u << 20;
+// Reads a submission's file without following links or blocking on FIFOs;
+// returns "" or what is wrong with it ("is a link", "is 5 MB, over ...").
+std::string readStageFile(const fs::path& path, std::string* bytes) {
+    struct stat st;
+    if (lstat(path.c_str(), &st) != 0) return "is missing";
+    if (S_ISLNK(st.st_mode)) return "is a link: submit the file itself";
+    if (!S_ISREG(st.st_mode)) return "is not a regular file";
+    if (std::uintmax_t(st.st_size) > kMaxStageFileBytes)
+        return "is " + std::to_string(st.st_size) + " bytes, over the limit of " +
+               std::to_string(kMaxStageFileBytes) + " bytes for a stage file";
+    const int fd = open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return "cannot be read";
+    bytes->assign(std::size_t(st.st_size) + 1, '\0');
+    std::size_t got = 0;
+    for (ssize_t n; got < bytes->size() && (n = read(fd, bytes->data() + got, bytes->size() - got)) > 0;)
+        got += std::size_t(n);
+    close(fd);
+    if (got > kMaxStageFileBytes) return "grew past the size limit while being read";
+    bytes->resize(got);
+    return "";
+}
 
-void copyStageFolder(const fs::path& from, const fs::path& to) {
+bool blank(const std::string& text) {
+    return std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isspace(c); });
+}
+
+// GLSL helper files a stage may include from its own folder, besides its
+// manifest's files (never compiled as C++).
+bool isHelper(const fs::path& p) {
+    const std::string ext = p.extension().string();
+    return ext == ".glsl" || ext == ".h" || ext == ".hpp";
+}
+
+// Copies the graded stage's files from the submission into impl/<stage>;
+// sets outcome.problem when one is missing, empty, a link or too large.
+void snapshotGradedStage(const StageRun& run, const StageManifest& manifest, const fs::path& to,
+                         RunOutcome& outcome) {
+    const fs::path from = fs::path(run.implementationRoot) / run.stage;
     fs::create_directories(to);
-    for (const auto& entry : fs::recursive_directory_iterator(from, fs::directory_options::skip_permission_denied)) {
-        const fs::path target = to / fs::relative(entry.path(), from);
-        if (entry.is_directory()) fs::create_directories(target);
-        else if (entry.is_regular_file() && entry.file_size() <= kMaxSourceBytes)
-            fs::copy_file(entry.path(), target, fs::copy_options::overwrite_existing);
+    std::vector<std::string> names = manifest.files;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(from, ec))
+        if (names.size() < manifest.files.size() + 32 && isHelper(entry.path()) &&
+            std::find(names.begin(), names.end(), entry.path().filename()) == names.end())
+            names.push_back(entry.path().filename());
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        const bool required = i < manifest.files.size();
+        std::string bytes;
+        const std::string wrong = readStageFile(from / names[i], &bytes);
+        const std::string shown = run.stage + "/" + names[i];
+        if (!wrong.empty() && !required) continue;  // a helper that is not fit is not copied
+        if (wrong == "is missing" || (required && blank(bytes))) {
+            if (outcome.problem.empty()) outcome.problem = shown + (wrong.empty() ? " is empty" : " is missing");
+            if (outcome.problemKind.empty()) outcome.problemKind = "not_implemented";
+            continue;
+        }
+        if (!wrong.empty()) {
+            outcome.problemKind = "error";
+            outcome.problem = shown + " " + wrong;
+            return;
+        }
+        writeFileAtomically((to / names[i]).string(), bytes);
     }
 }
 
-std::vector<std::string> cppFiles(const fs::path& folder, const fs::path& relativeTo) {
-    std::vector<std::string> files;
+// The other stages' GLSL, from the reference.
+void snapshotOtherStages(const std::string& referenceRoot, const std::string& stage, const fs::path& impl) {
     std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(folder, ec))
-        if (entry.is_regular_file() && entry.path().extension() == ".cpp")
-            files.push_back(fs::relative(entry.path(), relativeTo).string());
-    std::sort(files.begin(), files.end());
-    return files;
+    for (const auto& folder : fs::directory_iterator(referenceRoot, ec)) {
+        if (!folder.is_directory() || folder.path().filename() == stage) continue;
+        for (const auto& entry : fs::directory_iterator(folder.path(), ec)) {
+            const std::string ext = entry.path().extension().string();
+            if (!entry.is_regular_file() || (ext != ".glsl" && ext != ".frag" && ext != ".vert")) continue;
+            fs::create_directories(impl / folder.path().filename());
+            fs::copy_file(entry.path(), impl / folder.path().filename() / entry.path().filename());
+        }
+    }
+}
+
+// The manifest and its scene files, which the worker reads.
+void copyTask(const std::string& manifestRoot, const std::string& stage, const fs::path& task) {
+    const fs::path from = fs::path(manifestRoot) / stage;
+    fs::create_directories(task / stage);
+    fs::copy_file(from / "grading.json", task / stage / "grading.json");
+    std::error_code ec;
+    if (fs::is_directory(from / "scenes", ec))
+        for (const auto& entry : fs::recursive_directory_iterator(from / "scenes", ec)) {
+            const fs::path target = task / stage / fs::relative(entry.path(), from);
+            if (entry.is_directory() && !entry.is_symlink()) fs::create_directories(target);
+            else if (entry.is_regular_file() && !entry.is_symlink()) {
+                fs::create_directories(target.parent_path());
+                fs::copy_file(entry.path(), target);
+            }
+        }
+}
+
+ChildLimits sandboxLimits(double seconds, const std::vector<std::string>& readable) {
+    ChildLimits limits;
+    limits.isolate = true;
+    limits.seconds = seconds;
+    limits.readable = readable;
+    limits.environment["MESA_SHADER_CACHE_DISABLE"] = "true";
+    return limits;
+}
+
+// Builds `sources` (relative to `root`) into lib/stage_library.so, itself
+// sandboxed: a compiler can be told to read any file (#include "/etc/...").
+bool buildLibrary(const std::vector<std::string>& sources, const std::string& root, const fs::path& lib,
+                  RunOutcome& outcome) {
+    ChildLimits limits = sandboxLimits(120.0, {root, projectRoot() + "/framework"});
+    limits.workingDir = root;
+    limits.writable = {lib.string()};
+    limits.environment["TMPDIR"] = lib.string();
+    const ChildResult built = runChild(stageLibraryBuildCommand(sources, (lib / "stage_library.so").string()), limits);
+    if (built.succeeded()) return true;
+    outcome.compiled = false;
+    outcome.compileLog = built.output.empty() ? "the C++ compiler " + built.describe(limits.seconds) : built.output;
+    return false;
+}
+
+// The .cpp files the stage library is built from (relative to `root`).
+std::vector<std::string> cppSources(const StageRun& run, const StageManifest& manifest, const std::string& root) {
+    std::vector<std::string> sources;
+    auto add = [&](const fs::path& folder, const std::vector<std::string>& only) {
+        std::error_code ec;
+        for (const auto& entry : fs::directory_iterator(folder, ec)) {
+            const std::string name = entry.path().filename();
+            if (entry.is_regular_file() && entry.path().extension() == ".cpp" &&
+                (only.empty() || std::count(only.begin(), only.end(), name)))
+                sources.push_back(fs::relative(entry.path(), root).string());
+        }
+    };
+    if (run.graded) {
+        std::vector<std::string> named;
+        for (const std::string& f : manifest.files)
+            if (fs::path(f).extension() == ".cpp") named.push_back(f);
+        if (!named.empty()) add(fs::path(root) / run.stage, named);
+    } else if (fs::path(root).lexically_normal() != fs::path(projectRoot() + "/reference").lexically_normal()) {
+        // A self-check: the student's whole tree, C++ included.
+        std::error_code ec;
+        for (const auto& entry : fs::directory_iterator(root, ec))
+            if (entry.is_directory()) add(entry.path(), {});
+    }
+    std::sort(sources.begin(), sources.end());
+    return sources;
+}
+
+std::vector<std::string> dataFolders() {
+    std::vector<std::string> folders = {projectRoot() + "/shaders", projectRoot() + "/datasets"};
+    const char* path = std::getenv("VOXLAB_DATA_PATH");
+    for (std::string rest = path ? path : ""; !rest.empty();) {
+        const std::size_t colon = rest.find(':');
+        if (!rest.substr(0, colon).empty()) folders.push_back(rest.substr(0, colon));
+        rest = colon == std::string::npos ? "" : rest.substr(colon + 1);
+    }
+    return folders;
 }
 
 }  // namespace
 
-RunOutcome runStage(const StageRun& run, const GraderOptions& options) {
+RunOutcome runStage(const StageRun& run, const StageManifest& manifest, const GraderOptions& options) {
     RunOutcome outcome;
-    fs::create_directories(run.outputDir);
-    fs::create_directories(run.workDir);
-    // The implementation as the worker will see it.
+    const fs::path work = run.workDir, lib = work / "lib";
+    fs::remove_all(work);
+    fs::create_directories(lib);
+    copyTask(options.referenceRoot, run.stage, work / "task");
     std::string root = run.implementationRoot;
-    std::vector<std::string> sources;
-    if (options.isolateStage) {
-        root = (fs::path(run.workDir) / "impl").string();
-        fs::remove_all(root);
-        copyStageFolder(fs::path(run.implementationRoot) / run.stage, fs::path(root) / run.stage);
-        sources = cppFiles(fs::path(root) / run.stage, root);
-    } else if (options.shipped ||
-               fs::path(root).lexically_normal() != fs::path(options.referenceRoot).lexically_normal()) {
-        // A self-check: the student's whole tree, C++ included.
-        std::error_code ec;
-        for (const auto& entry : fs::directory_iterator(root, ec))
-            if (entry.is_directory())
-                for (const std::string& f : cppFiles(entry.path(), root)) sources.push_back(f);
+    if (run.graded) {
+        root = (work / "impl").string();
+        snapshotGradedStage(run, manifest, work / "impl" / run.stage, outcome);
+        if (outcome.problemKind == "error") return outcome;
+        snapshotOtherStages(options.referenceRoot, run.stage, work / "impl");
     }
+    outcome.stubs = unimplementedFunctions((fs::path(root) / run.stage).string());
+    if (!outcome.problem.empty()) return outcome;
 
     std::vector<std::string> worker = {voxlabExecutable(options), "grade-worker", "--stage", run.stage,
-                                       "--manifest-root", options.referenceRoot, "--implementation", root,
-                                       "--out", run.outputDir, "--suffix", run.suffix};
-    // Grading: the reference's C++ stages first (stage_library.so next to the
-    // expected outputs), then the submission's on top.
+                                       "--manifest-root", (work / "task").string(), "--implementation", root};
+    // The reference's C++ stages first, then the submission's on top.
     const fs::path referenceLibrary = fs::path(options.expectedDir) / "reference_stages.so";
     if (fs::exists(referenceLibrary)) {
-        worker.push_back("--stage-library");
-        worker.push_back(referenceLibrary.string());
+        fs::copy_file(referenceLibrary, lib / "reference_stages.so");
+        worker.insert(worker.end(), {"--stage-library", (lib / "reference_stages.so").string()});
     }
+    if (run.graded) worker.push_back("--graded");
+    const std::vector<std::string> sources = cppSources(run, manifest, root);
     if (!sources.empty()) {
-        const std::string library = (fs::path(run.workDir) / "stage_library.so").string();
-        ChildLimits limits;
-        limits.seconds = 120.0;
-        limits.workingDir = root;
-        limits.writable = {run.workDir};
-        limits.environment = {{"TMPDIR", run.workDir}};
-        const ChildResult built = runChild(stageLibraryBuildCommand(sources, library), limits);
-        if (!built.succeeded()) {
-            outcome.compiled = false;
-            outcome.compileLog = built.output.empty() ? "the C++ compiler " + built.describe(limits.seconds)
-                                                      : built.output;
-            return outcome;
-        }
-        worker.push_back("--stage-library");
-        worker.push_back(library);
+        if (!buildLibrary(sources, root, lib, outcome)) return outcome;
+        worker.insert(worker.end(), {"--graded-library", (lib / "stage_library.so").string()});
     }
 
-    ChildLimits limits;
-    limits.seconds = options.timeLimit;
+    std::vector<std::string> readable = dataFolders();
+    readable.insert(readable.end(), {root, (work / "task").string(), lib.string()});
+    ChildLimits limits = sandboxLimits(options.timeLimit, readable);
     limits.memoryBytes = options.memoryLimit;
-    limits.fileBytes = std::size_t(256) << 20;
-    limits.workingDir = run.outputDir;
-    limits.writable = {run.outputDir};
-    limits.environment["MESA_SHADER_CACHE_DISABLE"] = "true";
+    limits.fileBytes = std::size_t(1) << 20;
+    limits.resultsBytes = std::size_t(64) << 20;
+    limits.workingDir = root;
     if (options.renderThreads > 0) {
         limits.environment["LP_NUM_THREADS"] = std::to_string(options.renderThreads);
     } else if (!std::getenv("LP_NUM_THREADS")) {
@@ -116,6 +251,10 @@ RunOutcome runStage(const StageRun& run, const GraderOptions& options) {
     outcome.finished = result.succeeded();
     outcome.ended = result.describe(limits.seconds);
     outcome.output = result.output;
+    outcome.sandbox = result.sandbox;
+    outcome.results = parseWorkerResults(result.results, manifest);
+    if (result.resultsTruncated && outcome.results.problem.empty())
+        outcome.results.problem = "the worker sent more than the results channel takes";
     return outcome;
 }
 

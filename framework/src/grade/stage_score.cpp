@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "stage_job.h"
+#include "voxlab/atomic_file.h"
 #include "voxlab/error.h"
 #include "voxlab/function_checks.h"
 #include "voxlab/image.h"
@@ -44,6 +45,14 @@ std::string relativePaths(std::string text, const StageRun& run) {
 
 std::string firstLine(const std::string& s) { return s.substr(0, s.find('\n')); }
 
+// The expected image, copied into the report beside the submission's.
+void copyIntoReport(const fs::path& from, const fs::path& to) {
+    std::ifstream in(from, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    writeFileAtomically(to.string(), bytes.str());
+}
+
 // The line of a compiler log that says what is wrong: the first with
 // "error", else the first.
 std::string errorLine(const std::string& log) {
@@ -53,147 +62,161 @@ std::string errorLine(const std::string& log) {
     return firstLine(log);
 }
 
+// One scene's entry: compared with the expected image when the worker sent
+// one; the images go into the report folder (written here, by the grader).
+json scoreScene(const GradedScene& scene, const StageRun& run, const RunOutcome& outcome, const fs::path& expected,
+                const fs::path& report, const std::string& ended, double* credit) {
+    json entry = {{"name", scene.name}, {"max_score", 0.0}, {"score", 0.0}, {"tolerance", toJson(scene.tolerance)},
+                  {"weight", scene.weight}};
+    const fs::path want = expected / (scene.name + ".png");
+    const std::string base = run.stage + "/" + scene.name;
+    *credit = 0.0;
+    try {
+        if (!outcome.compiled) throw Error("not rendered: the stage's C++ did not compile");
+        if (!fs::exists(want)) throw Error("no expected image " + want.string());
+        copyIntoReport(want, report / (scene.name + ".reference.png"));
+        entry["images"] = {{"reference", base + ".reference.png"}};
+        const auto got = outcome.results.images.find(scene.name);
+        const auto error = outcome.results.errors.find("scene:" + scene.name);
+        if (got != outcome.results.images.end()) {
+            const Image a = loadPng(want.string());
+            Image flipMap, differenceMap;
+            const ImageMetrics m = compareForGrading(a, got->second, scene.tolerance, &flipMap, &differenceMap);
+            savePng(got->second, (report / (scene.name + ".submission.png")).string());
+            savePng(flipMap, (report / (scene.name + ".flip.png")).string());
+            savePng(differenceMap, (report / (scene.name + ".difference.png")).string());
+            entry["images"]["submission"] = base + ".submission.png";
+            entry["images"]["flip"] = base + ".flip.png";
+            entry["images"]["difference"] = base + ".difference.png";
+            entry["metrics"] = toJson(m);
+            const double ratio = toleranceRatio(m, scene.tolerance);
+            *credit = creditForRatio(ratio);
+            entry["status"] = ratio <= 1.0 ? "passed" : "failed";
+            char line[200];
+            std::snprintf(line, sizeof line, "%.2f%% of pixels off by more than %g levels, SSIM %.4f, FLIP %.4f",
+                          100.0 * m.fractionOver, scene.tolerance.maxDifference, m.ssim, m.flipMean);
+            entry["message"] = line;
+        } else if (error != outcome.results.errors.end()) {
+            throw Error(firstLine(relativePaths(error->second.value("message", "error"), run)));
+        } else {
+            throw Error(outcome.results.problem.empty() ? "no image: the stage's process " + ended + " before this scene"
+                                                        : outcome.results.problem);
+        }
+    } catch (const std::exception& e) {
+        entry["status"] = "error";
+        entry["message"] = e.what();
+    }
+    return entry;
+}
+
+json scoreCheck(const GradedCheck& check, const StageRun& run, const RunOutcome& outcome, const fs::path& expected,
+                const std::string& ended, double* credit) {
+    json entry = {{"name", check.name}, {"weight", check.weight}};
+    for (const FunctionCheckInfo& info : functionChecks())
+        if (info.name == check.name) entry["description"] = info.description;
+    *credit = 0.0;
+    try {
+        if (!outcome.compiled) throw Error("not run: the stage's C++ did not compile");
+        const auto want = readJson(expected / "checks" / (check.name + ".json"));
+        if (!want) throw Error("no expected outputs for check " + check.name);
+        const auto got = outcome.results.checks.find(check.name);
+        const auto error = outcome.results.errors.find("check:" + check.name);
+        if (got != outcome.results.checks.end()) {
+            const CheckComparison c = compareFunctionCheck(check.name, *want, got->second);
+            *credit = c.cases > 0 ? creditForFailedCases(double(c.failed) / c.cases) : 0.0;
+            entry["status"] = c.failed == 0 && c.cases > 0 ? "passed" : "failed";
+            entry["message"] = c.summary;
+            entry["examples"] = c.examples;
+        } else if (error != outcome.results.errors.end()) {
+            throw Error(firstLine(relativePaths(error->second.value("message", "error"), run)));
+        } else {
+            throw Error(outcome.results.problem.empty() ? "no result: the stage's process " + ended + " before this check"
+                                                        : outcome.results.problem);
+        }
+    } catch (const std::exception& e) {
+        entry["status"] = "error";
+        entry["message"] = e.what();
+    }
+    return entry;
+}
+
+// The stage's status and one-line message.
+std::pair<std::string, std::string> stageStatus(const RunOutcome& outcome, const std::string& compileLog,
+                                                const json& scenes, const json& checks) {
+    bool allPassed = true;
+    std::string firstError;
+    int failed = 0;
+    for (const json* items : {&scenes, &checks})
+        for (const json& e : *items) {
+            if (e["status"] == "passed") continue;
+            allPassed = false;
+            ++failed;
+            if (e["status"] == "error" && firstError.empty()) firstError = e["message"];
+        }
+    if (!outcome.problem.empty()) return {outcome.problemKind, outcome.problem};
+    if (!compileLog.empty()) return {"compile_error", errorLine(compileLog)};
+    if (!outcome.finished && outcome.ended.rfind("timed out", 0) == 0)
+        return {"timeout", "the stage " + outcome.ended + " (an endless loop?); scenes finished before it are scored"};
+    if (!outcome.finished && outcome.ended.rfind("crashed", 0) == 0)
+        return {"crashed", "the stage's process " + outcome.ended};
+    if (!outcome.stubs.empty()) {
+        std::string names;
+        for (const std::string& s : outcome.stubs) names += (names.empty() ? "" : ", ") + s;
+        return {"not_implemented", names + (outcome.stubs.size() == 1 ? " is" : " are") + " not yet implemented"};
+    }
+    if (allPassed) return {"passed", "every scene and check within its tolerance"};
+    return {firstError.empty() ? "failed" : "error",
+            std::to_string(failed) + " of " + std::to_string(scenes.size() + checks.size()) +
+                " items outside tolerance" + (firstError.empty() ? "" : "; " + firstError)};
+}
+
 }  // namespace
 
 json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManifest& manifest,
-                const GraderOptions& options, const std::string& submissionFolder) {
+                const GraderOptions& options, const std::string& reportStageDir) {
     json stage = {{"stage", manifest.stage}, {"title", manifest.title}, {"max_score", manifest.points}};
-    const fs::path expected = fs::path(options.expectedDir) / manifest.stage;
-    const fs::path output = run.outputDir;
-    const std::vector<std::string> stubs = unimplementedFunctions((fs::path(submissionFolder) / manifest.stage).string());
-    stage["not_implemented"] = stubs;
-
-    double weightSum = 0.0, credit = 0.0;
-    bool allPassed = true;
+    const fs::path expected = fs::path(options.expectedDir) / manifest.stage, report = reportStageDir;
+    fs::create_directories(report);
+    stage["not_implemented"] = outcome.stubs;
     std::string compileLog = outcome.compiled ? "" : relativePaths(outcome.compileLog, run);
-    std::string firstError;
+    for (const auto& [key, error] : outcome.results.errors)
+        if (error.value("kind", "") == "compile_error" && compileLog.empty())
+            compileLog = relativePaths(error.value("message", ""), run);
+    const bool ran = outcome.problem.empty();
+    double weightSum = 0.0, credit = 0.0;
     json scenes = json::array(), checks = json::array();
     for (const GradedScene& scene : manifest.scenes) {
+        double c = 0.0;
+        json entry = scoreScene(scene, run, outcome, expected, report, outcome.ended, &c);
+        if (!ran) entry["message"] = outcome.problem;
         weightSum += scene.weight;
-        json entry = {{"name", scene.name}, {"max_score", 0.0}, {"score", 0.0}, {"tolerance", toJson(scene.tolerance)}};
-        entry["weight"] = scene.weight;
-        const fs::path want = expected / (scene.name + ".png");
-        const fs::path got = output / (scene.name + run.suffix + ".png");
-        const fs::path error = output / (scene.name + run.suffix + ".error.json");
-        double sceneCredit = 0.0;
-        try {
-            if (!outcome.compiled) throw Error("not rendered: the stage's C++ did not compile");
-            if (!fs::exists(want)) throw Error("no expected image " + want.string());
-            if (fs::exists(got)) {
-                const Image a = loadPng(want.string()), b = loadPng(got.string());
-                Image flipMap, differenceMap;
-                const ImageMetrics m = compareForGrading(a, b, scene.tolerance, &flipMap, &differenceMap);
-                const std::string base = manifest.stage + "/" + scene.name;
-                fs::copy_file(want, output / (scene.name + ".reference.png"), fs::copy_options::overwrite_existing);
-                savePng(flipMap, (output / (scene.name + ".flip.png")).string());
-                savePng(differenceMap, (output / (scene.name + ".difference.png")).string());
-                entry["images"] = {{"reference", base + ".reference.png"},
-                                   {"submission", base + run.suffix + ".png"},
-                                   {"flip", base + ".flip.png"},
-                                   {"difference", base + ".difference.png"}};
-                entry["metrics"] = toJson(m);
-                const double ratio = toleranceRatio(m, scene.tolerance);
-                sceneCredit = creditForRatio(ratio);
-                entry["status"] = ratio <= 1.0 ? "passed" : "failed";
-                char line[200];
-                std::snprintf(line, sizeof line, "%.2f%% of pixels off by more than %g levels, SSIM %.4f, FLIP %.4f",
-                              100.0 * m.fractionOver, scene.tolerance.maxDifference, m.ssim, m.flipMean);
-                entry["message"] = line;
-            } else if (auto e = readJson(error)) {
-                const std::string message = relativePaths(e->value("message", "error"), run);
-                if (e->value("kind", "") == "compile_error" && compileLog.empty()) compileLog = message;
-                throw Error(firstLine(message));
-            } else {
-                throw Error("no image: the stage's process " + outcome.ended + " before this scene");
-            }
-        } catch (const std::exception& e) {
-            entry["status"] = "error";
-            entry["message"] = e.what();
-            if (firstError.empty()) firstError = e.what();
-            if (fs::exists(want)) {
-                fs::copy_file(want, output / (scene.name + ".reference.png"), fs::copy_options::overwrite_existing);
-                entry["images"] = {{"reference", manifest.stage + "/" + scene.name + ".reference.png"}};
-            }
-        }
-        if (entry["status"] != "passed") allPassed = false;
-        credit += scene.weight * sceneCredit;
-        entry["credit"] = sceneCredit;
+        credit += scene.weight * c;
+        entry["credit"] = c;
         scenes.push_back(entry);
     }
     for (const GradedCheck& check : manifest.checks) {
+        double c = 0.0;
+        json entry = scoreCheck(check, run, outcome, expected, outcome.ended, &c);
+        if (!ran) entry["message"] = outcome.problem;
         weightSum += check.weight;
-        json entry = {{"name", check.name}, {"weight", check.weight}};
-        for (const FunctionCheckInfo& info : functionChecks())
-            if (info.name == check.name) entry["description"] = info.description;
-        double checkCredit = 0.0;
-        try {
-            if (!outcome.compiled) throw Error("not run: the stage's C++ did not compile");
-            const auto want = readJson(expected / "checks" / (check.name + ".json"));
-            if (!want) throw Error("no expected outputs for check " + check.name);
-            const auto got = readJson(output / "checks" / (check.name + run.suffix + ".json"));
-            if (got) {
-                const CheckComparison c = compareFunctionCheck(check.name, *want, *got);
-                checkCredit = c.cases > 0 ? creditForFailedCases(double(c.failed) / c.cases) : 0.0;
-                entry["status"] = c.failed == 0 && c.cases > 0 ? "passed" : "failed";
-                entry["message"] = c.summary;
-                entry["examples"] = c.examples;
-            } else if (auto e = readJson(output / "checks" / (check.name + run.suffix + ".error.json"))) {
-                throw Error(firstLine(relativePaths(e->value("message", "error"), run)));
-            } else {
-                throw Error("no result: the stage's process " + outcome.ended + " before this check");
-            }
-        } catch (const std::exception& e) {
-            entry["status"] = "error";
-            entry["message"] = e.what();
-            if (firstError.empty()) firstError = e.what();
-        }
-        if (entry["status"] != "passed") allPassed = false;
-        credit += check.weight * checkCredit;
-        entry["credit"] = checkCredit;
+        credit += check.weight * c;
+        entry["credit"] = c;
         checks.push_back(entry);
     }
     // Points per item, in proportion to weight.
     const double perWeight = weightSum > 0 ? manifest.points / weightSum : 0.0;
-    for (json& e : scenes) {
-        e["max_score"] = perWeight * e["weight"].get<double>();
-        e["score"] = e["max_score"].get<double>() * e["credit"].get<double>();
-    }
-    for (json& e : checks) {
-        e["max_score"] = perWeight * e["weight"].get<double>();
-        e["score"] = e["max_score"].get<double>() * e["credit"].get<double>();
-    }
+    for (json* items : {&scenes, &checks})
+        for (json& e : *items) {
+            e["max_score"] = perWeight * e["weight"].get<double>();
+            e["score"] = e["max_score"].get<double>() * e["credit"].get<double>();
+        }
     stage["scenes"] = scenes;
     stage["checks"] = checks;
     stage["score"] = perWeight * credit;
+    stage["sandbox"] = outcome.sandbox;
     if (!compileLog.empty()) stage["log"] = compileLog;
-
-    std::string status, message;
-    if (!compileLog.empty()) {
-        status = "compile_error";
-        message = errorLine(compileLog);
-    } else if (!outcome.finished && outcome.ended.rfind("timed out", 0) == 0) {
-        status = "timeout";
-        message = "the stage " + outcome.ended + " (an endless loop?); scenes finished before it are scored";
-    } else if (!outcome.finished && outcome.ended.rfind("crashed", 0) == 0) {
-        status = "crashed";
-        message = "the stage's process " + outcome.ended;
-    } else if (!stubs.empty()) {
-        status = "not_implemented";
-        std::string names;
-        for (const std::string& s : stubs) names += (names.empty() ? "" : ", ") + s;
-        message = names + (stubs.size() == 1 ? " is" : " are") + " not yet implemented";
-    } else if (allPassed) {
-        status = "passed";
-        message = "every scene and check within its tolerance";
-    } else {
-        status = firstError.empty() ? "failed" : "error";
-        int failed = 0;
-        for (const json& e : scenes) failed += e["status"] != "passed";
-        for (const json& e : checks) failed += e["status"] != "passed";
-        message = std::to_string(failed) + " of " + std::to_string(scenes.size() + checks.size()) +
-                  " items outside tolerance" + (firstError.empty() ? "" : "; " + firstError);
-    }
-    if (!outcome.finished && !outcome.output.empty() && status != "compile_error")
+    auto [status, message] = stageStatus(outcome, compileLog, scenes, checks);
+    if (ran && !outcome.finished && !outcome.output.empty() && status != "compile_error")
         stage["log"] = relativePaths(outcome.output, run);
     if (manifest.points == 0.0 && status == "passed") status = "example";
     stage["status"] = status;

@@ -19,6 +19,21 @@ CppStages& table() {
 
 const CppStages& cppStages() { return table(); }
 
+bool isStageFunction(const std::string& name) { return name == "planeBoxPolygon" || name == "chooseSliceAxis"; }
+
+void clearStageFunctions(const std::vector<std::string>& names) {
+    for (const std::string& name : names) {
+        if (name == "planeBoxPolygon")
+            table().planeBoxPolygon = [](glm::dvec3, double, glm::dvec3, glm::dvec3) -> std::vector<glm::dvec3> {
+                throw NotImplemented("planeBoxPolygon");
+            };
+        else if (name == "chooseSliceAxis")
+            table().chooseSliceAxis = [](glm::dvec3) -> int { throw NotImplemented("chooseSliceAxis"); };
+        else
+            throw Error("'" + name + "' is not a C++ stage function");
+    }
+}
+
 std::vector<std::string> loadStageLibrary(const std::string& path) {
     // RTLD_LOCAL: the library's symbols must not replace anything else's.
     void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);

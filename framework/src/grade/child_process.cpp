@@ -236,6 +236,8 @@ enum Layer : unsigned {
     const unsigned char message[5] = {'L', static_cast<unsigned char>(layers),
                                       static_cast<unsigned char>(layers >> 8), 0, 0};
     if (write(status, message, sizeof message) != sizeof message) _exit(126);
+    // No descriptor the grader happened to have open reaches the child.
+    close_range(results >= 0 ? 4 : 3, ~0U, 0);
     execve(p.args[0], p.args.data(), p.env.data());
     const char msg[] = "cannot execute the program\n";
     if (write(2, msg, sizeof msg - 1) < 0) _exit(127);

@@ -94,7 +94,7 @@ void snapshotGradedStage(const StageRun& run, const StageManifest& manifest, con
         const std::string wrong = readStageFile(from / names[i], &bytes);
         const std::string shown = run.stage + "/" + names[i];
         if (!wrong.empty() && !required) continue;  // a helper that is not fit is not copied
-        if (wrong == "is missing" || (required && blank(bytes))) {
+        if (wrong == "is missing" || (wrong.empty() && required && blank(bytes))) {
             if (outcome.problem.empty()) outcome.problem = shown + (wrong.empty() ? " is empty" : " is missing");
             if (outcome.problemKind.empty()) outcome.problemKind = "not_implemented";
             continue;
@@ -238,7 +238,7 @@ RunOutcome runStage(const StageRun& run, const StageManifest& manifest, const Gr
     readable.insert(readable.end(), {root, (work / "task").string(), lib.string()});
     ChildLimits limits = sandboxLimits(options.timeLimit, readable);
     limits.memoryBytes = options.memoryLimit;
-    limits.fileBytes = std::size_t(1) << 20;
+    limits.fileBytes = std::size_t(256) << 20;  // Mesa keeps large textures in memfds, which this also caps
     limits.resultsBytes = std::size_t(64) << 20;
     limits.workingDir = root;
     if (options.renderThreads > 0) {

@@ -1,0 +1,361 @@
+// Hostile submissions against the grader (issue: "the grader cannot be
+// cheated or harmed by a submission"). Each test is an attack a student can
+// actually mount, graded for real through gradeSubmissions(), and asserts:
+//   - no unearned points: the score is what the honest part of the
+//     submission earns (0 for a stub);
+//   - nothing outside the report folder changed (fingerprints of reference/,
+//     the submission and a canary folder beside the report);
+//   - no process it started is left running (each names a unique token);
+//   - the grader finished and wrote its report.
+// Where an attack's code runs, it also prints a marker, so the test shows
+// that the attack really ran and the defence, not an accident, stopped it.
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "voxlab/child_process.h"
+#include "voxlab/grader.h"
+#include "voxlab/image.h"
+#include "support/run_command.h"
+
+namespace voxlab::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path kSource = VOXLAB_SOURCE_DIR;
+
+fs::path scratchRoot() { return fs::path(::testing::TempDir()) / ("voxlab_hostile_" + std::to_string(getpid())); }
+
+fs::path scratch(const std::string& name) {
+    const fs::path dir = scratchRoot() / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+std::string fingerprint(const fs::path& root) {
+    std::vector<std::string> entries;
+    for (const auto& e : fs::recursive_directory_iterator(root))
+        entries.push_back(fs::relative(e.path(), root).string() + "|" +
+                          (e.is_symlink() ? "link" : e.is_regular_file() ? readFile(e.path()) : "dir"));
+    std::sort(entries.begin(), entries.end());
+    std::string all;
+    for (const std::string& s : entries) all += s + "\n";
+    return std::to_string(all.size()) + ":" + std::to_string(std::hash<std::string>{}(all));
+}
+
+int processesWith(const std::string& token) {
+    int count = 0;
+    for (const auto& entry : fs::directory_iterator("/proc")) {
+        const std::string name = entry.path().filename().string();
+        if (name.empty() || !std::isdigit(static_cast<unsigned char>(name[0])) || name == std::to_string(getpid()))
+            continue;
+        std::ifstream in(entry.path() / "cmdline", std::ios::binary);
+        const std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        std::ifstream stat(entry.path() / "stat");
+        std::string line;
+        std::getline(stat, line);
+        const bool zombie = line.find(") Z") != std::string::npos;
+        if (cmdline.find(token) != std::string::npos && !zombie) ++count;
+    }
+    return count;
+}
+
+// A C++ stage (texslice3d) whose file is the starter stub plus `attack`, a
+// function body run when the stage library is loaded.
+std::string hostileCpp(const std::string& attack, const std::string& includes = "") {
+    std::string stub = readFile((kSource / "assignments/texslice3d/proxy_geometry.cpp").string());
+    return "#include <cstdio>\n#include <cstdlib>\n#include <cstring>\n#include <fcntl.h>\n#include <signal.h>\n"
+           "#include <unistd.h>\n#include <fstream>\n#include <sstream>\n#include <string>\n" +
+           includes + stub + "\nnamespace {\nint hostile() {\n" + attack +
+           "\n    return 0;\n}\nconst int hostileRan = hostile();\n}  // namespace\n";
+}
+
+class HostileSubmissions : public ::testing::Test {
+public:
+    static void SetUpTestSuite() {
+        expected_ = scratch("expected");
+        GraderOptions o = options();
+        o.shipped = false;
+        renderExpectedOutputs(o);
+    }
+    static void TearDownTestSuite() { fs::remove_all(scratchRoot()); }
+    static GraderOptions options() {
+        GraderOptions o;
+        o.voxlab = VOXLAB_BINARY;
+        o.referenceRoot = (kSource / "reference").string();
+        o.expectedDir = expected_.string();
+        o.shipped = true;
+        o.stages = {"mip", "composite", "texslice3d"};
+        o.jobs = 1;
+        o.renderThreads = 1;
+        o.timeLimit = 20;
+        o.progress = false;
+        return o;
+    }
+
+    // Grades `submission`'s `stage` and checks the invariants above; returns
+    // the stage's entry of the report.
+    json gradeAndCheck(const fs::path& submission, const std::string& stage, const std::string& token = "") {
+        const fs::path report = scratch("report_" + stage) / "report";
+        const fs::path canary = report.parent_path() / "canary";
+        fs::create_directories(canary);
+        std::ofstream(canary / "keep.txt") << "canary";
+        const std::string before = fingerprint(kSource / "reference") + fingerprint(submission) + fingerprint(canary);
+        GraderOptions o = options();
+        o.stages = {stage};
+        const json result = gradeSubmissions({{"hostile", submission.string(), report.string()}}, o).at(0);
+        EXPECT_EQ(before, fingerprint(kSource / "reference") + fingerprint(submission) + fingerprint(canary))
+            << "something outside the report folder changed";
+        EXPECT_TRUE(fs::exists(report / "report.json"));
+        EXPECT_TRUE(fs::exists(report / "index.html"));
+        if (!token.empty()) EXPECT_EQ(processesWith(token), 0) << "a process of the submission outlived grading";
+        report_ = readFile((report / "report.json").string()) + readFile((report / "index.html").string());
+        return result.at("stages").at(0);
+    }
+
+    // A submission folder holding one stage, a copy of the reference's or
+    // of the starter code's.
+    static fs::path submissionWith(const std::string& name, const std::string& stage, const std::string& from) {
+        const fs::path sub = scratch("sub_" + name);
+        fs::copy(kSource / from / stage, sub / stage, fs::copy_options::recursive);
+        return sub;
+    }
+
+    std::string report_;  // report.json and index.html of the last grading
+
+private:
+    static inline fs::path expected_;
+};
+
+// --- The graded stage comes only from the submission. ---
+
+TEST_F(HostileSubmissions, AnEmptyStageFolderScoresNothing) {
+    const fs::path sub = scratch("empty");
+    fs::create_directories(sub / "mip");
+    const json s = gradeAndCheck(sub, "mip");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_EQ(s["status"], "not_implemented") << s["message"];
+    EXPECT_NE(s["message"].get<std::string>().find("mip/mip.glsl is missing"), std::string::npos) << s["message"];
+}
+
+TEST_F(HostileSubmissions, ADeletedOrBlankStageFileScoresNothing) {
+    fs::path sub = submissionWith("deleted", "mip", "reference");
+    fs::remove(sub / "mip/mip.glsl");
+    EXPECT_EQ(gradeAndCheck(sub, "mip")["score"].get<double>(), 0.0);
+    std::ofstream(sub / "mip/mip.glsl") << "  \n\t\n";
+    const json s = gradeAndCheck(sub, "mip");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_NE(s["message"].get<std::string>().find("is empty"), std::string::npos) << s["message"];
+}
+
+TEST_F(HostileSubmissions, IncludesThatLeaveTheSubmissionAreCompileErrors) {
+    const std::string absolute = (kSource / "reference/mip/mip.glsl").string();
+    for (const std::string& include : {std::string("../reference/mip/mip.glsl"), std::string("../../mip/mip.glsl"),
+                                       absolute, std::string("mip/../mip/mip.glsl")}) {
+        fs::path sub = submissionWith("include", "mip", "assignments");
+        std::ofstream(sub / "mip/mip.glsl") << "#include \"" << include << "\"\n";
+        const json s = gradeAndCheck(sub, "mip");
+        EXPECT_EQ(s["score"].get<double>(), 0.0) << include;
+        EXPECT_EQ(s["status"], "compile_error") << include << ": " << s["message"];
+    }
+}
+
+TEST_F(HostileSubmissions, ALinkToTheReferenceScoresNothing) {
+    fs::path sub = submissionWith("link", "mip", "assignments");
+    fs::remove(sub / "mip/mip.glsl");
+    fs::create_symlink(kSource / "reference/mip/mip.glsl", sub / "mip/mip.glsl");
+    json s = gradeAndCheck(sub, "mip");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_NE(s["message"].get<std::string>().find("is a link"), std::string::npos) << s["message"];
+    // A helper linked in and included: the link is not copied, the include fails.
+    fs::remove(sub / "mip/mip.glsl");
+    std::ofstream(sub / "mip/mip.glsl") << "#include \"mip/solution.glsl\"\n";
+    fs::create_symlink(kSource / "reference/mip/mip.glsl", sub / "mip/solution.glsl");
+    s = gradeAndCheck(sub, "mip");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_EQ(s["status"], "compile_error") << s["message"];
+    // A FIFO where the file should be: refused at once, not waited on.
+    fs::remove(sub / "mip/mip.glsl");
+    ASSERT_EQ(mkfifo((sub / "mip/mip.glsl").c_str(), 0600), 0);
+    s = gradeAndCheck(sub, "mip");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_NE(s["message"].get<std::string>().find("not a regular file"), std::string::npos) << s["message"];
+}
+
+TEST_F(HostileSubmissions, AnOversizedStageFileIsAnError) {
+    fs::path sub = submissionWith("padded", "mip", "assignments");
+    std::ofstream(sub / "mip/mip.glsl", std::ios::app) << std::string(5 << 20, ' ') << "\n";
+    const json s = gradeAndCheck(sub, "mip");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_EQ(s["status"], "error");
+    EXPECT_NE(s["message"].get<std::string>().find("over the limit"), std::string::npos) << s["message"];
+}
+
+TEST_F(HostileSubmissions, ACppFileBesideAGlslStageIsNotCompiled) {
+    // A stub composite.glsl and a helper.cpp that would print a marker (and,
+    // in the attack that was found, copy the expected images) when loaded.
+    fs::path sub = submissionWith("helper", "composite", "assignments");
+    std::ofstream(sub / "composite/helper.cpp")
+        << "#include <cstdio>\nstatic int ran = [] { std::puts(\"HOSTILE-HELPER-RAN\"); return 1; }();\n";
+    const json s = gradeAndCheck(sub, "composite");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_EQ(report_.find("HOSTILE-HELPER-RAN"), std::string::npos);
+}
+
+// --- A C++ stage's code runs boxed in. ---
+
+TEST_F(HostileSubmissions, CppCannotReadTheReferenceOrTheExpectedOutputs) {
+    const std::string reference = (kSource / "reference/mip/mip.glsl").string();
+    const std::string expected = (fs::path(options().expectedDir) / "texslice3d/bucky_oblique.png").string();
+    const std::string attack =
+        "    std::puts(\"HOSTILE-RAN\");\n"
+        "    for (const char* path : {\"" + reference + "\", \"" + expected + "\", \"/etc/shadow\"}) {\n"
+        "        std::ifstream in(path);\n"
+        "        std::stringstream s; s << in.rdbuf();\n"
+        "        if (in && s.str().size() > 0) std::printf(\"LEAKED %s\\n\", path);\n"
+        "    }\n"
+        "    std::fflush(stdout);\n"
+        "    std::abort();  // so that the report shows the log\n";
+    fs::path sub = submissionWith("reader", "texslice3d", "assignments");
+    std::ofstream(sub / "texslice3d/proxy_geometry.cpp") << hostileCpp(attack);
+    const json s = gradeAndCheck(sub, "texslice3d");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_NE(report_.find("HOSTILE-RAN"), std::string::npos) << "the attack did not run: " << s["message"];
+    EXPECT_EQ(report_.find("LEAKED"), std::string::npos);
+}
+
+TEST_F(HostileSubmissions, CppCannotIncludeTheReferenceAtCompileTime) {
+    // The compiler's error log would show the included file's lines.
+    fs::path sub = submissionWith("compile_reader", "texslice3d", "assignments");
+    std::ofstream(sub / "texslice3d/proxy_geometry.cpp")
+        << "#include \"" << (kSource / "reference/texslice3d/proxy_geometry.cpp").string() << "\"\n";
+    const json s = gradeAndCheck(sub, "texslice3d");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_EQ(s["status"], "compile_error") << s["message"];
+    EXPECT_EQ(report_.find("dot(n, a + t (b - a))"), std::string::npos) << "the reference's text reached the report";
+}
+
+TEST_F(HostileSubmissions, CppCannotWriteOutsideOrPlantLinks) {
+    const fs::path report = scratchRoot() / "report_texslice3d" / "report";
+    const std::string targets[] = {(kSource / "reference/texslice2d/README.md").string(),
+                                   (report.parent_path() / "canary/keep.txt").string(),
+                                   (report / "index.html").string(), "/tmp/voxlab_hostile_was_here"};
+    std::string attack = "    std::puts(\"HOSTILE-RAN\");\n";
+    for (const std::string& t : targets)
+        attack += "    if (std::FILE* f = std::fopen(\"" + t + "\", \"a\")) { std::fputs(\"x\", f); std::fclose(f); "
+                  "std::puts(\"WROTE " + t + "\"); }\n";
+    attack += "    if (symlink(\"" + targets[0] + "\", \"" + (report / "texslice3d/bucky_oblique.submission.png").string() +
+              "\") == 0) std::puts(\"WROTE link\");\n    std::fflush(stdout);\n    std::abort();\n";
+    fs::path sub = submissionWith("writer", "texslice3d", "assignments");
+    std::ofstream(sub / "texslice3d/proxy_geometry.cpp") << hostileCpp(attack);
+    const json s = gradeAndCheck(sub, "texslice3d");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_NE(report_.find("HOSTILE-RAN"), std::string::npos) << s["message"];
+    EXPECT_EQ(report_.find("WROTE"), std::string::npos);
+    EXPECT_FALSE(fs::exists("/tmp/voxlab_hostile_was_here"));
+}
+
+TEST_F(HostileSubmissions, CppCannotKillTheGraderOrLeaveProcesses) {
+    const std::string token = "voxlab_hostile_" + std::to_string(getpid());
+    setenv("VOXLAB_HOSTILE_TARGET", std::to_string(getpid()).c_str(), 1);
+    const std::string attack =
+        "    for (int i = 0; i < 3; ++i) if (fork() == 0) { setsid(); execl(\"/bin/sh\", \"sh\", \"-c\", "
+        "\"while :; do sleep 0.2; done\", \"" + token + "\", (char*)nullptr); _exit(0); }\n"
+        "    for (int i = 0; i < 500; ++i) if (fork() == 0) { pause(); _exit(0); }  // a fork bomb, bounded\n"
+        "    kill(std::atoi(std::getenv(\"VOXLAB_HOSTILE_TARGET\")), SIGKILL);  // the grader (this test)\n"
+        "    kill(getppid(), SIGKILL);\n";
+    fs::path sub = submissionWith("killer", "texslice3d", "assignments");
+    std::ofstream(sub / "texslice3d/proxy_geometry.cpp") << hostileCpp(attack);
+    const json s = gradeAndCheck(sub, "texslice3d", token);
+    EXPECT_EQ(s["score"].get<double>(), 0.0);  // and this process is still alive to say so
+}
+
+TEST_F(HostileSubmissions, CppHasNoNetwork) {
+    const int server = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ASSERT_EQ(bind(server, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+    socklen_t len = sizeof addr;
+    getsockname(server, reinterpret_cast<sockaddr*>(&addr), &len);
+    listen(server, 4);
+    const std::string attack =
+        "    int s = socket(AF_INET, SOCK_STREAM, 0);\n    sockaddr_in a{};\n    a.sin_family = AF_INET;\n"
+        "    a.sin_port = htons(" + std::to_string(ntohs(addr.sin_port)) + ");\n"
+        "    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);\n"
+        "    if (connect(s, (sockaddr*)&a, sizeof a) == 0) { (void)!write(s, \"stolen\", 6); std::puts(\"SENT\"); }\n";
+    fs::path sub = submissionWith("network", "texslice3d", "assignments");
+    std::ofstream(sub / "texslice3d/proxy_geometry.cpp")
+        << hostileCpp(attack, "#include <arpa/inet.h>\n#include <netinet/in.h>\n#include <sys/socket.h>\n");
+    const json s = gradeAndCheck(sub, "texslice3d");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    pollfd p = {server, POLLIN, 0};
+    EXPECT_EQ(poll(&p, 1, 200), 0) << "a connection from the submission arrived";
+    close(server);
+}
+
+TEST_F(HostileSubmissions, CppCannotForgeResultsEvenWithTheGoldenImages) {
+    // Students have the expected images (a release ships them for `voxlab
+    // check`). A stub stage that embeds them and writes them to the results
+    // channel before the framework renders must not earn the points.
+    std::string attack;
+    for (const std::string scene : {"bonsai_perspective", "tooth_oblique", "bucky_oblique"}) {
+        const Image img = loadPng((fs::path(options().expectedDir) / "texslice3d" / (scene + ".png")).string());
+        std::string rgb;
+        for (std::size_t i = 0; i < std::size_t(img.width) * img.height; ++i)
+            for (int c = 0; c < 3; ++c) rgb += std::to_string(int(toByte(img.rgba[i * 4 + c]))) + ",";
+        const std::string header = "{\\\"type\\\":\\\"image\\\",\\\"name\\\":\\\"" + scene + "\\\",\\\"width\\\":" +
+                                   std::to_string(img.width) + ",\\\"height\\\":" + std::to_string(img.height) +
+                                   ",\\\"bytes\\\":" + std::to_string(rgb.size() ? img.width * img.height * 3 : 0) +
+                                   "}\\n";
+        attack += "    { static const unsigned char px[] = {" + rgb + "};\n      const char h[] = \"" + header +
+                  "\";\n      for (int fd = 3; fd < 64; ++fd) { if (write(fd, h, sizeof h - 1) > 0) "
+                  "(void)!write(fd, px, sizeof px); } }\n";
+    }
+    attack += "    std::puts(\"HOSTILE-RAN\");\n";
+    fs::path sub = submissionWith("forger", "texslice3d", "assignments");
+    std::ofstream(sub / "texslice3d/proxy_geometry.cpp") << hostileCpp(attack);
+    const json s = gradeAndCheck(sub, "texslice3d");
+    EXPECT_EQ(s["score"].get<double>(), 0.0) << s.dump(1);
+}
+
+// --- A class survives any one submission. ---
+
+TEST_F(HostileSubmissions, BatchGradingSurvivesAHostileSubmission) {
+    const fs::path classDir = scratch("class");
+    for (const char* name : {"alice", "mallory", "zoe"}) fs::create_directories(classDir / name);
+    fs::copy(kSource / "reference/texslice3d", classDir / "alice/texslice3d", fs::copy_options::recursive);
+    fs::copy(kSource / "assignments/texslice3d", classDir / "mallory/texslice3d", fs::copy_options::recursive);
+    std::ofstream(classDir / "mallory/texslice3d/proxy_geometry.cpp")
+        << hostileCpp("    kill(-1, SIGKILL);\n    kill(0, SIGKILL);\n");
+    fs::copy(kSource / "assignments/texslice3d", classDir / "zoe/texslice3d", fs::copy_options::recursive);
+    if (std::find(sandboxLayers().begin(), sandboxLayers().end(), "pid, network and ipc namespaces") ==
+        sandboxLayers().end())
+        GTEST_SKIP() << "no PID namespace here: kill(-1) would reach this machine's processes";
+    GraderOptions o = options();
+    o.stages = {"texslice3d"};
+    std::vector<Submission> subs;
+    for (const char* name : {"alice", "mallory", "zoe"})
+        subs.push_back({name, (classDir / name).string(), (classDir / "reports" / name).string()});
+    const std::vector<json> reports = gradeSubmissions(subs, o);
+    ASSERT_EQ(reports.size(), 3u);
+    EXPECT_DOUBLE_EQ(reports[0]["score"].get<double>(), 10.0) << reports[0].dump(1);
+    EXPECT_EQ(reports[1]["score"].get<double>(), 0.0);
+    EXPECT_NE(reports[1]["stages"][0]["status"], "passed");
+    EXPECT_EQ(reports[2]["score"].get<double>(), 0.0);
+    for (const char* name : {"alice", "mallory", "zoe"})
+        EXPECT_TRUE(fs::exists(classDir / "reports" / name / "report.json")) << name;
+}
+
+}  // namespace
+}  // namespace voxlab::testing

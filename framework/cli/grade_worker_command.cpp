@@ -36,9 +36,9 @@ std::string errorKind(const std::exception& e) {
     return "error";
 }
 
-void renderScenes(const StageManifest& manifest, const std::string& implementation, WorkerResultWriter& out) {
-    RenderEngine engine(implementation);
-    std::map<std::string, Volume> volumes;
+// `volumes` outlives `engine`, which keeps the address of the one it draws.
+void renderScenes(const StageManifest& manifest, std::map<std::string, Volume>& volumes, RenderEngine& engine,
+                  WorkerResultWriter& out) {
     for (const GradedScene& graded : manifest.scenes) {
         try {
             Scene scene = Scene::load(graded.scenePath);
@@ -79,7 +79,10 @@ int gradeWorkerCommand(int argc, char** argv) {
 
     WorkerResultWriter out(3);
     auto context = createHeadlessContext();
-    renderScenes(manifest, implementation, out);
+    // The engine lives until the checks are done, as the GL context does.
+    std::map<std::string, Volume> volumes;
+    RenderEngine engine(implementation);
+    renderScenes(manifest, volumes, engine, out);
     for (const GradedCheck& check : manifest.checks) {
         try {
             out.check(check.name, runFunctionCheck(check.name, implementation));

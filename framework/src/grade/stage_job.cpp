@@ -236,6 +236,9 @@ RunOutcome runStage(const StageRun& run, const StageManifest& manifest, const Gr
 
     std::vector<std::string> readable = dataFolders();
     readable.insert(readable.end(), {root, (work / "task").string(), lib.string()});
+    // A self-check (the student's own tree on their own machine) borrows the
+    // stages it lacks from reference/ where there is one; grading never does.
+    if (!run.graded) readable.push_back(projectRoot() + "/reference");
     ChildLimits limits = sandboxLimits(options.timeLimit, readable);
     limits.memoryBytes = options.memoryLimit;
     limits.fileBytes = std::size_t(256) << 20;  // Mesa keeps large textures in memfds, which this also caps

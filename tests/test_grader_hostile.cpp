@@ -88,7 +88,7 @@ public:
         o.shipped = false;
         renderExpectedOutputs(o);
     }
-    static void TearDownTestSuite() { fs::remove_all(scratchRoot()); }
+    static void TearDownTestSuite() { if (!std::getenv("VOXLAB_KEEP")) fs::remove_all(scratchRoot()); }
     static GraderOptions options() {
         GraderOptions o;
         o.voxlab = VOXLAB_BINARY;

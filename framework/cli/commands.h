@@ -19,6 +19,7 @@ int compareCommand(int argc, char** argv);
 int gradeCommand(int argc, char** argv);
 int checkCommand(int argc, char** argv);
 int gradeWorkerCommand(int argc, char** argv);
+int stageHostCommand(int argc, char** argv);
 int benchCommand(int argc, char** argv);
 
 // Options that describe a scene, shared by `render` and `view`.

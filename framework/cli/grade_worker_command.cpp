@@ -22,6 +22,7 @@
 #include "voxlab/image.h"
 #include "voxlab/render_engine.h"
 #include "voxlab/shader.h"
+#include "voxlab/stage_host.h"
 #include "voxlab/stage_library.h"
 #include "voxlab/volume.h"
 #include "voxlab/worker_results.h"
@@ -56,7 +57,19 @@ void renderScenes(const StageManifest& manifest, std::map<std::string, Volume>& 
     }
 }
 
+std::string selfExecutable() {
+    std::error_code ec;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (ec) throw Error("grade-worker: cannot find its own executable (/proc/self/exe)");
+    return self.string();
+}
+
 }  // namespace
+
+int stageHostCommand(int argc, char** argv) {
+    if (argc != 3) throw Error("usage: voxlab stage-host LIBRARY (started by voxlab grade-worker)");
+    return runStageHost(argv[2]);
+}
 
 int gradeWorkerCommand(int argc, char** argv) {
     const std::vector<OptionSpec> specs = {
@@ -74,8 +87,14 @@ int gradeWorkerCommand(int argc, char** argv) {
     const std::string stage = *args.get("stage"), implementation = *args.get("implementation");
     const StageManifest manifest = loadStageManifest(*args.get("manifest-root"), stage);
     for (const std::string& library : args.getAll("stage-library")) loadStageLibrary(library);
-    if (args.has("graded")) clearStageFunctions(manifest.cppFunctions);
-    if (args.get("graded-library")) loadStageLibrary(*args.get("graded-library"));
+    if (args.has("graded")) {
+        // The graded stage's C++ answers from a process of its own (stage_host.h).
+        clearStageFunctions(manifest.cppFunctions);
+        if (args.get("graded-library"))
+            useStageHost(selfExecutable(), *args.get("graded-library"), manifest.cppFunctions);
+    } else if (args.get("graded-library")) {
+        loadStageLibrary(*args.get("graded-library"));
+    }
 
     WorkerResultWriter out(3);
     auto context = createHeadlessContext();

@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
         if (command == "bench") return benchCommand(argc, argv);
         if (command == "check") return checkCommand(argc, argv);
         if (command == "grade-worker") return gradeWorkerCommand(argc, argv);
+        if (command == "stage-host") return stageHostCommand(argc, argv);
         if (command == "help" || command == "--help" || command == "-h") {
             usage(std::cout);
             return 0;

@@ -34,6 +34,10 @@ bool isStageFunction(const std::string& name);
 // implemented, rather than quietly the linked-in reference.
 void clearStageFunctions(const std::vector<std::string>& names);
 
+// Replaces the table's entries that `functions` sets (the non-null ones);
+// returns their names.
+std::vector<std::string> overrideStageFunctions(const CppStages& functions);
+
 // Loads a stage library (dlopen) and takes the functions it defines.
 // Returns their names. Throws voxlab::Error naming the library when it
 // cannot be loaded (an undefined symbol, say).

@@ -216,7 +216,11 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
     stage["sandbox"] = outcome.sandbox;
     if (!compileLog.empty()) stage["log"] = compileLog;
     auto [status, message] = stageStatus(outcome, compileLog, scenes, checks);
-    if (ran && !outcome.finished && !outcome.output.empty() && status != "compile_error")
+    // The worker's output (what a C++ stage printed, a crash) helps when something went wrong.
+    bool anyError = false;
+    for (const json* items : {&scenes, &checks})
+        for (const json& e : *items) anyError = anyError || e["status"] == "error";
+    if (ran && (!outcome.finished || anyError) && !outcome.output.empty() && status != "compile_error")
         stage["log"] = relativePaths(outcome.output, run);
     if (manifest.points == 0.0 && status == "passed") status = "example";
     stage["status"] = status;

@@ -44,7 +44,10 @@ std::vector<std::string> loadStageLibrary(const std::string& path) {
     using Getter = CppStages (*)();
     auto get = reinterpret_cast<Getter>(dlsym(handle, "voxlab_stage_library_functions"));
     if (!get) throw Error(path + ": not a voxlab stage library (no voxlab_stage_library_functions)");
-    const CppStages found = get();
+    return overrideStageFunctions(get());  // the handle stays open for the life of the process
+}
+
+std::vector<std::string> overrideStageFunctions(const CppStages& found) {
     std::vector<std::string> names;
     if (found.planeBoxPolygon) {
         table().planeBoxPolygon = found.planeBoxPolygon;
@@ -54,7 +57,7 @@ std::vector<std::string> loadStageLibrary(const std::string& path) {
         table().chooseSliceAxis = found.chooseSliceAxis;
         names.push_back("chooseSliceAxis");
     }
-    return names;  // the handle stays open for the life of the process
+    return names;
 }
 
 std::vector<std::string> stageLibraryBuildCommand(const std::vector<std::string>& sources,

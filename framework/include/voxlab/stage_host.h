@@ -1,0 +1,33 @@
+// voxlab: a submission's C++ stage in a process of its own, for grading.
+//
+// When the grader grades a C++ stage, the submission's stage library is not
+// loaded into the worker (which renders, and holds the results channel and
+// the other stages' reference code). A stage host, `voxlab stage-host LIB`,
+// started by the worker, confines itself further (reads only its library
+// and the system's, writes nothing), then loads the library and answers
+// calls over a pipe. The worker points the graded stage's entries of
+// cppStages() at stubs that call the host. The stage's code thus cannot
+// write to the results channel, read what the worker holds, or change how
+// the framework renders: it can only answer the calls it is asked.
+//
+// Protocol (native byte order; both ends are this executable):
+//   request   one byte, the function ('P' planeBoxPolygon, 'A' chooseSliceAxis),
+//             then its arguments as doubles (10 for 'P', 3 for 'A');
+//   response  'O' then the result ('P': uint32 count <= 64, then 3 doubles a
+//             point; 'A': int32), or 'N'/'E' then uint32 length and the
+//             message of a NotImplemented / other exception.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace voxlab {
+
+// The host's side: serves calls on stdin/stdout until stdin closes.
+int runStageHost(const std::string& library);
+
+// The worker's side: starts `voxlab` (this executable) as a stage host for
+// `library` and routes the named stage functions to it.
+void useStageHost(const std::string& voxlab, const std::string& library, const std::vector<std::string>& functions);
+
+}  // namespace voxlab

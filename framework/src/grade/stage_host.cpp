@@ -1,0 +1,197 @@
+// voxlab: the stage host and the worker's stubs that call it (see
+// stage_host.h).
+#include "voxlab/stage_host.h"
+
+#include <dlfcn.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstring>
+
+#include "landlock.h"
+#include "voxlab/error.h"
+#include "voxlab/stage_library.h"
+
+namespace voxlab {
+
+namespace {
+
+constexpr std::uint32_t kMaxPoints = 64;      // a plane meets a box in at most 6
+constexpr std::uint32_t kMaxMessage = 4096;
+// The host reads calls on stdin and answers on fd 3, so that what the
+// stage prints (stdout, stderr) goes to the worker's log, not into answers.
+constexpr int kAnswers = 3;
+
+bool readAll(int fd, void* data, std::size_t size) {
+    auto* p = static_cast<char*>(data);
+    while (size > 0) {
+        const ssize_t n = read(fd, p, size);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return false;
+        p += n;
+        size -= std::size_t(n);
+    }
+    return true;
+}
+
+bool writeAll(int fd, const void* data, std::size_t size) {
+    const auto* p = static_cast<const char*>(data);
+    while (size > 0) {
+        const ssize_t n = write(fd, p, size);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return false;
+        p += n;
+        size -= std::size_t(n);
+    }
+    return true;
+}
+
+// --- The host. ---
+
+void sendMessage(char status, const std::string& text) {
+    const std::uint32_t length = std::uint32_t(std::min<std::size_t>(text.size(), kMaxMessage));
+    if (!writeAll(kAnswers, &status, 1) || !writeAll(kAnswers, &length, 4) || !writeAll(kAnswers, text.data(), length))
+        _exit(3);
+}
+
+void serveCall(char op, const CppStages& stages) {
+    double a[10];
+    if (!readAll(0, a, (op == 'P' ? 10 : 3) * sizeof(double))) _exit(0);
+    try {
+        if (op == 'P') {
+            if (!stages.planeBoxPolygon) throw NotImplemented("planeBoxPolygon");
+            std::vector<glm::dvec3> points = stages.planeBoxPolygon({a[0], a[1], a[2]}, a[3], {a[4], a[5], a[6]},
+                                                                   {a[7], a[8], a[9]});
+            if (points.size() > kMaxPoints) throw Error("planeBoxPolygon returned " + std::to_string(points.size()) + " points");
+            const std::uint32_t count = std::uint32_t(points.size());
+            if (!writeAll(kAnswers, "O", 1) || !writeAll(kAnswers, &count, 4) ||
+                !writeAll(kAnswers, points.data(), count * sizeof(glm::dvec3)))
+                _exit(3);
+        } else {
+            if (!stages.chooseSliceAxis) throw NotImplemented("chooseSliceAxis");
+            const std::int32_t axis = stages.chooseSliceAxis({a[0], a[1], a[2]});
+            if (!writeAll(kAnswers, "O", 1) || !writeAll(kAnswers, &axis, 4)) _exit(3);
+        }
+    } catch (const NotImplemented& e) {
+        sendMessage('N', e.what());
+    } catch (const std::exception& e) {
+        sendMessage('E', e.what());
+    } catch (...) {
+        sendMessage('E', "the stage threw something that is not an exception");
+    }
+}
+
+// --- The worker's stubs. ---
+
+struct Host {
+    int to = -1, from = -1;
+    pid_t pid = 0;
+    std::string library;
+};
+
+Host& host() {
+    static Host h;
+    return h;
+}
+
+[[noreturn]] void hostFailed() {
+    Host& h = host();
+    std::string why = "the stage's C++ (" + h.library + ") stopped answering";
+    int status = 0;
+    if (h.pid > 0 && waitpid(h.pid, &status, WNOHANG) == h.pid) {
+        h.pid = 0;
+        if (WIFSIGNALED(status)) why = std::string("the stage's C++ crashed (") + strsignal(WTERMSIG(status)) + ")";
+        else why = "the stage's C++ ended the process (exit status " + std::to_string(WEXITSTATUS(status)) + ")";
+    }
+    throw Error(why);
+}
+
+// Sends a call; returns when the answer's status byte says it succeeded.
+void call(char op, const double* args, int count) {
+    Host& h = host();
+    if (!writeAll(h.to, &op, 1) || !writeAll(h.to, args, std::size_t(count) * sizeof(double))) hostFailed();
+    char status = 0;
+    if (!readAll(h.from, &status, 1)) hostFailed();
+    if (status == 'O') return;
+    std::uint32_t length = 0;
+    if ((status != 'N' && status != 'E') || !readAll(h.from, &length, 4) || length > kMaxMessage) hostFailed();
+    std::string message(length, '\0');
+    if (!readAll(h.from, message.data(), length)) hostFailed();
+    if (status == 'N') throw NotImplemented(message.substr(0, message.find(' ')));
+    throw Error(message);
+}
+
+std::vector<glm::dvec3> remotePlaneBoxPolygon(glm::dvec3 n, double d, glm::dvec3 lo, glm::dvec3 hi) {
+    const double args[10] = {n.x, n.y, n.z, d, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z};
+    call('P', args, 10);
+    std::uint32_t count = 0;
+    if (!readAll(host().from, &count, 4) || count > kMaxPoints) hostFailed();
+    std::vector<glm::dvec3> points(count);
+    if (!readAll(host().from, points.data(), count * sizeof(glm::dvec3))) hostFailed();
+    return points;
+}
+
+int remoteChooseSliceAxis(glm::dvec3 v) {
+    const double args[3] = {v.x, v.y, v.z};
+    call('A', args, 3);
+    std::int32_t axis = 0;
+    if (!readAll(host().from, &axis, 4)) hostFailed();
+    return axis;
+}
+
+}  // namespace
+
+int runStageHost(const std::string& library) {
+    // Reads: the library and what the dynamic loader needs; writes: none.
+    const std::vector<const char*> readable = {library.c_str(), "/usr", "/lib", "/lib64", "/etc/ld.so.cache"};
+    sandbox::restrictSelf(readable, {}, true);
+    close_range(kAnswers + 1, ~0U, 0);
+    dup2(2, 1);
+    void* handle = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+        const char* why = dlerror();
+        throw Error(library + ": cannot load the stage library: " + (why ? why : "unknown error"));
+    }
+    auto get = reinterpret_cast<CppStages (*)()>(dlsym(handle, "voxlab_stage_library_functions"));
+    if (!get) throw Error(library + ": not a voxlab stage library");
+    const CppStages stages = get();
+    signal(SIGPIPE, SIG_DFL);
+    for (char op; readAll(0, &op, 1);) {
+        if (op != 'P' && op != 'A') return 2;
+        serveCall(op, stages);
+    }
+    return 0;
+}
+
+void useStageHost(const std::string& voxlab, const std::string& library, const std::vector<std::string>& functions) {
+    int toHost[2], fromHost[2];
+    if (pipe2(toHost, O_CLOEXEC) != 0 || pipe2(fromHost, O_CLOEXEC) != 0)
+        throw Error(std::string("cannot start the stage host: ") + std::strerror(errno));
+    std::vector<char*> argv = {const_cast<char*>(voxlab.c_str()), const_cast<char*>("stage-host"),
+                               const_cast<char*>(library.c_str()), nullptr};
+    const pid_t pid = fork();
+    if (pid < 0) throw Error(std::string("cannot start the stage host: ") + std::strerror(errno));
+    if (pid == 0) {
+        dup2(toHost[0], 0);
+        dup2(fromHost[1], kAnswers);
+        execv(argv[0], argv.data());
+        _exit(127);
+    }
+    close(toHost[0]);
+    close(fromHost[1]);
+    signal(SIGPIPE, SIG_IGN);  // a host that died is reported by the stubs, not by a signal
+    Host& h = host();
+    h = {toHost[1], fromHost[0], pid, library.substr(library.rfind('/') + 1)};
+    CppStages routed{};
+    for (const std::string& f : functions) {
+        if (f == "planeBoxPolygon") routed.planeBoxPolygon = &remotePlaneBoxPolygon;
+        else if (f == "chooseSliceAxis") routed.chooseSliceAxis = &remoteChooseSliceAxis;
+        else throw Error("'" + f + "' is not a C++ stage function");
+    }
+    overrideStageFunctions(routed);
+}
+
+}  // namespace voxlab

@@ -34,6 +34,7 @@ namespace {
 std::string errorKind(const std::exception& e) {
     if (dynamic_cast<const ShaderError*>(&e)) return "compile_error";
     if (dynamic_cast<const NotImplemented*>(&e)) return "not_implemented";
+    if (dynamic_cast<const StageCrashed*>(&e)) return "crashed";
     return "error";
 }
 

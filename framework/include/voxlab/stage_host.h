@@ -21,7 +21,16 @@
 #include <string>
 #include <vector>
 
+#include "voxlab/error.h"
+
 namespace voxlab {
+
+// Thrown by the worker's stubs when the host crashed or stopped answering:
+// the stage's C++ crashed, which the grader reports as such.
+class StageCrashed : public Error {
+public:
+    using Error::Error;
+};
 
 // The host's side: serves calls on stdin/stdout until stdin closes.
 int runStageHost(const std::string& library);

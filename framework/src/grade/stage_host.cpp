@@ -89,7 +89,7 @@ void serveCall(char op, const CppStages& stages) {
 struct Host {
     int to = -1, from = -1;
     pid_t pid = 0;
-    std::string library;
+    std::string library, died;
 };
 
 Host& host() {
@@ -97,16 +97,19 @@ Host& host() {
     return h;
 }
 
+// Every call after the host died says how it died.
 [[noreturn]] void hostFailed() {
     Host& h = host();
-    std::string why = "the stage's C++ (" + h.library + ") stopped answering";
     int status = 0;
-    if (h.pid > 0 && waitpid(h.pid, &status, WNOHANG) == h.pid) {
-        h.pid = 0;
-        if (WIFSIGNALED(status)) why = std::string("the stage's C++ crashed (") + strsignal(WTERMSIG(status)) + ")";
-        else why = "the stage's C++ ended the process (exit status " + std::to_string(WEXITSTATUS(status)) + ")";
+    if (h.pid > 0 && waitpid(h.pid, &status, WNOHANG) == 0) {
+        kill(h.pid, SIGKILL);  // alive but not answering: it ends here
     }
-    throw Error(why);
+    if (h.pid > 0 && waitpid(h.pid, &status, 0) == h.pid) {
+        h.pid = 0;
+        if (WIFSIGNALED(status)) h.died = std::string("the stage's C++ crashed (") + strsignal(WTERMSIG(status)) + ")";
+        else h.died = "the stage's C++ ended its process (exit status " + std::to_string(WEXITSTATUS(status)) + ")";
+    }
+    throw StageCrashed(h.died.empty() ? "the stage's C++ (" + h.library + ") stopped answering" : h.died);
 }
 
 // Sends a call; returns when the answer's status byte says it succeeded.
@@ -184,7 +187,7 @@ void useStageHost(const std::string& voxlab, const std::string& library, const s
     close(fromHost[1]);
     signal(SIGPIPE, SIG_IGN);  // a host that died is reported by the stubs, not by a signal
     Host& h = host();
-    h = {toHost[1], fromHost[0], pid, library.substr(library.rfind('/') + 1)};
+    h = {toHost[1], fromHost[0], pid, library.substr(library.rfind('/') + 1), ""};
     CppStages routed{};
     for (const std::string& f : functions) {
         if (f == "planeBoxPolygon") routed.planeBoxPolygon = &remotePlaneBoxPolygon;

@@ -159,6 +159,8 @@ std::pair<std::string, std::string> stageStatus(const RunOutcome& outcome, const
         return {"timeout", "the stage " + outcome.ended + " (an endless loop?); scenes finished before it are scored"};
     if (!outcome.finished && outcome.ended.rfind("crashed", 0) == 0)
         return {"crashed", "the stage's process " + outcome.ended};
+    for (const auto& [key, error] : outcome.results.errors)  // a C++ stage's host
+        if (error.value("kind", "") == "crashed") return {"crashed", error.value("message", "crashed")};
     if (!outcome.stubs.empty()) {
         std::string names;
         for (const std::string& s : outcome.stubs) names += (names.empty() ? "" : ", ") + s;

@@ -184,6 +184,12 @@ TEST_F(HostileSubmissions, ALinkToTheReferenceScoresNothing) {
     s = gradeAndCheck(sub, "mip");
     EXPECT_EQ(s["score"].get<double>(), 0.0);
     EXPECT_EQ(s["status"], "compile_error") << s["message"];
+    // The whole stage folder a link to the reference's.
+    const fs::path linked = scratch("linked_folder");
+    fs::create_directory_symlink(kSource / "reference/mip", linked / "mip");
+    s = gradeAndCheck(linked, "mip");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_NE(s["message"].get<std::string>().find("not a folder"), std::string::npos) << s["message"];
     // A FIFO where the file should be: refused at once, not waited on.
     fs::remove(sub / "mip/mip.glsl");
     ASSERT_EQ(mkfifo((sub / "mip/mip.glsl").c_str(), 0600), 0);

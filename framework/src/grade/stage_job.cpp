@@ -82,6 +82,12 @@ void snapshotGradedStage(const StageRun& run, const StageManifest& manifest, con
                          RunOutcome& outcome) {
     const fs::path from = fs::path(run.implementationRoot) / run.stage;
     fs::create_directories(to);
+    struct stat st;
+    if (lstat(from.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+        outcome.problemKind = "error";
+        outcome.problem = run.stage + "/ is not a folder (a link?): submit the folder itself";
+        return;
+    }
     std::vector<std::string> names = manifest.files;
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(from, ec))

@@ -178,6 +178,32 @@ TEST_F(Cli, ErrorsAreOneLineWithANonZeroExit) {
     EXPECT_NE(r.err.find("unknown command"), std::string::npos);
 }
 
+// A save that fails is an error (it used to exit 0 with a truncated file):
+// one line naming the file, a non-zero exit, and the old file untouched.
+TEST_F(Cli, FailedSavesExitNonZeroAndKeepTheOldFile) {
+    const std::string render = "render --dataset phantom:sphere:8 --size 8x8 --out ";
+    expectOneLineError(render + "/dev/full", "/dev/full: cannot write: No space left on device");
+    expectOneLineError("bench --dataset phantom:sphere:8 --size 8x8 --frames 1 --warmup 0 --sample-map /dev/full",
+                       "/dev/full");
+    // A folder where the image should go: refused, and what it holds is kept.
+    fs::create_directories(dir_ / "taken.png");
+    write("taken.png/inside", "kept");
+    expectOneLineError(render + path("taken.png"), path("taken.png"));
+    EXPECT_EQ(readFile(path("taken.png/inside")), "kept");
+    // Over a file larger than a limit the new image exceeds (the shell's
+    // ulimit -f, in 512-byte blocks; SIGXFSZ ignored so that the write fails).
+    const std::string old(300, 'o');
+    write("old.png", old);
+    const CommandResult limited = runShell("sh -c 'trap \"\" XFSZ; ulimit -f 1; exec " + std::string(VOXLAB_BINARY) +
+                                           " render --dataset phantom:shepp-logan:64 --size 256x256 --out " +
+                                           path("old.png") + "'");
+    EXPECT_NE(limited.exitCode, 0) << limited.out;
+    EXPECT_EQ(lineCount(limited.err), 1) << limited.err;
+    EXPECT_NE(limited.err.find(path("old.png") + ": cannot write: File too large"), std::string::npos) << limited.err;
+    EXPECT_EQ(readFile(path("old.png")), old);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 2) << "a temporary file is left";
+}
+
 TEST_F(Cli, BrokenStudentShaderIsReportedWithFileAndLine) {
     fs::create_directories(dir_ / "mip");
     write("mip/mip.glsl", "float mip_ray(Ray ray) {\n    return oops;\n}\n");

@@ -94,7 +94,8 @@ Volume loadNrrd(const std::string& path);
 Volume loadFld(const std::string& path);
 Volume loadDatRaw(const std::string& path);
 
-// Writes an attached, raw (or gzip) NRRD. Used by tests and tools.
+// Writes an attached, raw (or gzip) NRRD through writeFileAtomically (a
+// failed save leaves the old file). Used by tests and tools.
 void saveNrrd(const Volume& volume, const std::string& path, bool gzip = false);
 
 // Built-in analytic phantoms, addressed as "phantom:NAME[:SIZE]" (SIZE is

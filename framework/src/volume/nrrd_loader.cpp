@@ -198,7 +198,8 @@ Volume loadNrrd(const std::string& path) {
     for (int a = 0; a < 3; ++a) {
         if (!parseInt(sizes[a], n[a])) fail(path, "invalid sizes '" + sizesText + "'");
     }
-    std::uint64_t count = checkedVoxelCount(path, "sizes", n[0], n[1], n[2]);
+    // Checked against kMaxVoxels and the volume cap before anything is read.
+    const std::uint64_t expected = checkedVolumeBytes(path, "sizes", n[0], n[1], n[2], type);
     glm::dvec3 spacing = parseSpacing(path, h);
 
     const std::string& encodingText = require(path, h, "encoding");
@@ -238,7 +239,6 @@ Volume loadNrrd(const std::string& path) {
     }
 
     const std::size_t elem = voxelTypeSize(type);
-    const std::uint64_t expected = count * elem;
     std::vector<std::uint8_t> bytes =
         gzip ? inflateGzipFile(path, dataPath, offset, std::uint64_t(skip), expected)
              : readRawVoxels(path, dataPath, offset + std::uint64_t(skip), expected);

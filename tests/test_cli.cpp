@@ -236,6 +236,24 @@ TEST_F(Cli, EglAndOsMesaRenderTheSameImage) {
     }
 }
 
+// A viewer script's screenshots are its output: one that cannot be saved
+// ends the script with the error and a non-zero exit (it used to be a toast
+// in a window nobody watches, and exit 0). So does --screenshot.
+TEST_F(Cli, ViewerScreenshotThatCannotBeSavedFails) {
+    if (runShell("which xvfb-run").exitCode != 0) GTEST_SKIP() << "xvfb-run is not installed";
+    const std::string script = write("shots.txt", "wait 2\nscreenshot /dev/full\nscreenshot " + path("never.png") + "\n");
+    const std::string viewer = "xvfb-run -a -s '-screen 0 640x480x24' " + std::string(VOXLAB_BINARY) +
+                               " view --dataset phantom:sphere:16 --window-size 320x240 ";
+    const CommandResult r = runShell(viewer + "--script " + script, 180);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("voxlab: /dev/full: cannot write: No space left on device\n"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(path("never.png"))) << "the script went on after the failed screenshot";
+    const CommandResult once = runShell(viewer + "--frames 2 --screenshot /dev/full", 180);
+    EXPECT_NE(once.exitCode, 0);
+    EXPECT_NE(once.err.find("voxlab: /dev/full: cannot write: No space left on device\n"), std::string::npos)
+        << once.err;
+}
+
 // The viewer in a real window under Xvfb: a scripted screenshot that shows
 // the panel and a rendered volume.
 TEST_F(Cli, ViewerScreenshotUnderXvfb) {

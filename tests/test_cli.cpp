@@ -178,6 +178,32 @@ TEST_F(Cli, ErrorsAreOneLineWithANonZeroExit) {
     EXPECT_NE(r.err.find("unknown command"), std::string::npos);
 }
 
+// A save that fails is an error (it used to exit 0 with a truncated file):
+// one line naming the file, a non-zero exit, and the old file untouched.
+TEST_F(Cli, FailedSavesExitNonZeroAndKeepTheOldFile) {
+    const std::string render = "render --dataset phantom:sphere:8 --size 8x8 --out ";
+    expectOneLineError(render + "/dev/full", "/dev/full: cannot write: No space left on device");
+    expectOneLineError("bench --dataset phantom:sphere:8 --size 8x8 --frames 1 --warmup 0 --sample-map /dev/full",
+                       "/dev/full");
+    // A folder where the image should go: refused, and what it holds is kept.
+    fs::create_directories(dir_ / "taken.png");
+    write("taken.png/inside", "kept");
+    expectOneLineError(render + path("taken.png"), path("taken.png"));
+    EXPECT_EQ(readFile(path("taken.png/inside")), "kept");
+    // Over a file larger than a limit the new image exceeds (the shell's
+    // ulimit -f, in 512-byte blocks; SIGXFSZ ignored so that the write fails).
+    const std::string old(300, 'o');
+    write("old.png", old);
+    const CommandResult limited = runShell("sh -c 'trap \"\" XFSZ; ulimit -f 1; exec " + std::string(VOXLAB_BINARY) +
+                                           " render --dataset phantom:shepp-logan:64 --size 256x256 --out " +
+                                           path("old.png") + "'");
+    EXPECT_NE(limited.exitCode, 0) << limited.out;
+    EXPECT_EQ(lineCount(limited.err), 1) << limited.err;
+    EXPECT_NE(limited.err.find(path("old.png") + ": cannot write: File too large"), std::string::npos) << limited.err;
+    EXPECT_EQ(readFile(path("old.png")), old);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 2) << "a temporary file is left";
+}
+
 TEST_F(Cli, BrokenStudentShaderIsReportedWithFileAndLine) {
     fs::create_directories(dir_ / "mip");
     write("mip/mip.glsl", "float mip_ray(Ray ray) {\n    return oops;\n}\n");
@@ -208,6 +234,24 @@ TEST_F(Cli, EglAndOsMesaRenderTheSameImage) {
         for (std::size_t i = 0; i < a.rgba.size(); ++i) worst = std::max(worst, std::abs(a.rgba[i] - b.rgba[i]));
         EXPECT_LE(worst, 1.0f / 255.0f) << renderer;
     }
+}
+
+// A viewer script's screenshots are its output: one that cannot be saved
+// ends the script with the error and a non-zero exit (it used to be a toast
+// in a window nobody watches, and exit 0). So does --screenshot.
+TEST_F(Cli, ViewerScreenshotThatCannotBeSavedFails) {
+    if (runShell("which xvfb-run").exitCode != 0) GTEST_SKIP() << "xvfb-run is not installed";
+    const std::string script = write("shots.txt", "wait 2\nscreenshot /dev/full\nscreenshot " + path("never.png") + "\n");
+    const std::string viewer = "xvfb-run -a -s '-screen 0 640x480x24' " + std::string(VOXLAB_BINARY) +
+                               " view --dataset phantom:sphere:16 --window-size 320x240 ";
+    const CommandResult r = runShell(viewer + "--script " + script, 180);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("voxlab: /dev/full: cannot write: No space left on device\n"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(path("never.png"))) << "the script went on after the failed screenshot";
+    const CommandResult once = runShell(viewer + "--frames 2 --screenshot /dev/full", 180);
+    EXPECT_NE(once.exitCode, 0);
+    EXPECT_NE(once.err.find("voxlab: /dev/full: cannot write: No space left on device\n"), std::string::npos)
+        << once.err;
 }
 
 // The viewer in a real window under Xvfb: a scripted screenshot that shows

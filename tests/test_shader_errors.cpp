@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <type_traits>
+#include <utility>
 
 #include "support/gl_fixture.h"
 #include "voxlab/shader.h"
@@ -22,6 +24,20 @@ fs::path makeImplementation(const std::string& stage, const std::string& file, c
     return root;
 }
 
+// RenderEngine keeps the address of the volume it is given, so handing it a
+// temporary must not compile (it did, here, and left a dangling pointer).
+// Detected in an unevaluated context: a deleted overload is a substitution
+// failure, so CanSetVolume<T> says whether setVolume(T) would compile.
+template <class T, class = void>
+struct CanSetVolume : std::false_type {};
+template <class T>
+struct CanSetVolume<T, std::void_t<decltype(std::declval<RenderEngine&>().setVolume(std::declval<T>()))>>
+    : std::true_type {};
+static_assert(CanSetVolume<Volume&>::value && CanSetVolume<const Volume&>::value,
+              "setVolume takes a volume that outlives the call");
+static_assert(!CanSetVolume<Volume>::value && !CanSetVolume<const Volume>::value && !CanSetVolume<Volume&&>::value,
+              "setVolume must refuse temporaries: the engine keeps their address");
+
 TEST_F(GlTest, CompileErrorNamesTheStudentFileAndLine) {
     const fs::path root = makeImplementation("mip", "mip.glsl",
                                              "#include \"voxlab/ray.glsl\"\n"
@@ -30,8 +46,10 @@ TEST_F(GlTest, CompileErrorNamesTheStudentFileAndLine) {
                                              "    m = undefined_thing;\n"
                                              "    return m;\n"
                                              "}\n");
+    // Declared before the engine, which keeps its address: it must outlive it.
+    const Volume volume = makePhantom("phantom:sphere:8");
     RenderEngine student(root.string());
-    student.setVolume(makePhantom("phantom:sphere:8"));
+    student.setVolume(volume);
     Scene scene;
     scene.renderer = "mip";
     scene.width = scene.height = 8;

@@ -24,6 +24,11 @@ int benchCommand(int argc, char** argv);
 
 // Options that describe a scene, shared by `render` and `view`.
 std::vector<OptionSpec> sceneOptions();
+// --max-volume-mib (part of sceneOptions; `info` takes it too), and what it
+// does: sets VOXLAB_MAX_VOLUME_MIB, the volume cap of volume.h, after
+// checking the value. sceneFromArgs applies it.
+OptionSpec volumeCapOption();
+void applyVolumeCapOption(const Args& args);
 // Builds a scene from `base` when given, else from the scene file named by
 // the first positional argument, then applies the flags on top.
 Scene sceneFromArgs(const Args& args, const std::string& command, const Scene* base = nullptr);

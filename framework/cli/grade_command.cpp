@@ -3,11 +3,12 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <thread>
 
 #include "commands.h"
+#include "voxlab/atomic_file.h"
 #include "voxlab/error.h"
 #include "voxlab/grader.h"
 #include "voxlab/html_report.h"
@@ -53,10 +54,11 @@ std::string csvField(const std::string& s) {
     return q + "\"";
 }
 
-// One row per submission: total, then each stage's score.
+// One row per submission: total, then each stage's score. The table is
+// built in memory and saved atomically: a failed save leaves the previous
+// gradebook whole and ends the command with an error.
 void writeGradebook(const std::vector<json>& reports, const std::string& path) {
-    std::ofstream csv(path);
-    if (!csv) throw Error(path + ": cannot write the gradebook");
+    std::ostringstream csv;
     csv << "name,score,max_score";
     if (!reports.empty())
         for (const json& s : reports[0]["stages"]) csv << "," << csvField(s.value("stage", "?"));
@@ -76,6 +78,7 @@ void writeGradebook(const std::vector<json>& reports, const std::string& path) {
         }
         csv << "," << csvField(problems) << "\n";
     }
+    writeFileAtomically(path, csv.str());
 }
 
 }  // namespace

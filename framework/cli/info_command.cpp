@@ -37,15 +37,17 @@ std::string sparkline(const Histogram& h, int columns) {
 
 int infoCommand(int argc, char** argv) {
     const std::vector<OptionSpec> specs = {{"bins", "N", "histogram bins (default 64)"},
+                                           volumeCapOption(),
                                            {"help", "", "show this help"}};
     const Args args(specs, argc, argv, 2, "info");
     if (args.has("help") || args.positionals().size() != 1) {
-        std::cout << "usage: voxlab info DATASET [--bins N]\n\n"
+        std::cout << "usage: voxlab info DATASET [--bins N] [--max-volume-mib MIB]\n\n"
                      "Prints a volume's dimensions, voxel type, spacing, value range and histogram.\n"
                      "DATASET is a file (.nrrd .nhdr .fld .dat) or a phantom (phantom:NAME[:N]).\n\n"
                   << formatOptions(specs);
         return args.has("help") ? 0 : 2;
     }
+    applyVolumeCapOption(args);
     const Volume v = loadVolume(resolveDataPath(args.positionals()[0]));
     const int bins = args.get("bins") ? parseInt(*args.get("bins"), "--bins") : 64;
     if (bins < 1 || bins > 4096) throw Error("option --bins: must be in 1..4096");

@@ -1,10 +1,12 @@
 // voxlab CLI: scene-building options shared by `render` and `view`. Flags
 // override the scene file, key by key.
+#include <cstdlib>
 #include <sstream>
 
 #include "commands.h"
 #include "voxlab/camera.h"
 #include "voxlab/error.h"
+#include "voxlab/volume.h"
 
 namespace voxlab::cli {
 
@@ -34,7 +36,23 @@ std::vector<OptionSpec> sceneOptions() {
         {"cut-renderer", "ID|none", "cutting plane: renderer of the other side (default: none, invisible)"},
         {"cut-tf", "FILE", "cutting plane: transfer function of the other side"},
         {"cut-param", "NAME=VALUE", "cutting plane: a parameter of the other side's renderer (repeatable)"},
+        volumeCapOption(),
     };
+}
+
+OptionSpec volumeCapOption() {
+    return {"max-volume-mib", "MIB",
+            "refuse volumes with more voxel data (default " + std::to_string(kDefaultVolumeCapMiB) + ", or $" +
+                kVolumeCapVariable + ")"};
+}
+
+void applyVolumeCapOption(const Args& args) {
+    const auto value = args.get("max-volume-mib");
+    if (!value) return;
+    const std::uint64_t mib = parseVolumeCapMiB(*value, "option --max-volume-mib");
+    // Set through the environment, the one place the cap is read (volume.h):
+    // this process's loaders and any worker process it starts see the same.
+    ::setenv(kVolumeCapVariable, std::to_string(mib).c_str(), 1);
 }
 
 std::string defaultScenePath() { return projectRoot() + "/datasets/scenes/default.json"; }
@@ -86,6 +104,7 @@ void parseCuttingPlane(const Args& args, Scene* scene) {
 }  // namespace
 
 Scene sceneFromArgs(const Args& args, const std::string& command, const Scene* base) {
+    applyVolumeCapOption(args);  // before anything loads a volume
     Scene scene;
     const auto& pos = args.positionals();
     if (pos.size() > 1) throw Error(command + ": expected at most one scene file, got '" + pos[1] + "' too");

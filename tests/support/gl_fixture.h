@@ -28,6 +28,9 @@ public:
     static RenderEngine& engine() { return *engine_; }
 
     // Renders `scene` on `volume` and returns 8-bit grey values (red channel).
+    // The engine keeps `volume`'s address, so no temporaries (as for
+    // RenderEngine::setVolume).
+    static std::vector<int> renderGrey(const Volume&& volume, const Scene& scene) = delete;
     static std::vector<int> renderGrey(const Volume& volume, const Scene& scene) {
         engine_->setVolume(volume);
         const Image img = engine_->render(scene);

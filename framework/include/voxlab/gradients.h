@@ -35,7 +35,9 @@ namespace voxlab {
 enum class GradientEstimator { Central, Sobel };
 const char* gradientEstimatorName(GradientEstimator e);
 
-// One gradient per voxel, in the volume's voxel order (x fastest).
+// One gradient per voxel, in the volume's voxel order (x fastest). The work
+// takes 16 bytes a voxel; more than the volume cap (volume.h) is refused
+// with a voxlab::Error before anything is allocated.
 std::vector<glm::vec3> computeGradients(const Volume& volume, GradientEstimator estimator);
 
 // The 2D histogram the 2D transfer-function editor draws: voxel counts over

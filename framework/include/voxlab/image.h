@@ -35,7 +35,9 @@ struct Image {
 std::uint8_t toByte(float x);
 
 // Writes an RGB PNG (alpha dropped: colours are already over the
-// background). Creates no folders. Throws voxlab::Error naming the path.
+// background) through writeFileAtomically (atomic_file.h): a failed save
+// leaves the old file. Creates no folders. Throws voxlab::Error naming the
+// path.
 void savePng(const Image& image, const std::string& path);
 
 // Reads a PNG (any channel count) into an Image with values k/255.

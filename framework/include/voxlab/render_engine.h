@@ -58,7 +58,14 @@ public:
 
     // Uploads the volume as a 3D texture in its native precision (R8, R16,
     // R32F; int16 is shifted by +32768 into R16 so that no value is lost).
+    // The engine keeps the volume's address (for its value range, the
+    // empty-space bricks and volume()), so the volume must outlive the engine
+    // or the next setVolume(). A temporary would be destroyed at the end of
+    // the call and leave a dangling pointer, so rvalues are refused at
+    // compile time (the overload below; `const Volume&&` catches const and
+    // non-const rvalues alike, as std::ref does).
     void setVolume(const Volume& volume);
+    void setVolume(const Volume&& volume) = delete;
     const Volume* volume() const { return volume_; }
 
     // Renders `scene` (its dataset is ignored: the volume set above is used)

@@ -10,6 +10,7 @@
 // (opacity correction; see the README's rendering conventions).
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -56,9 +57,17 @@ struct TransferFunctionTable {
     glm::vec4 lookup(double value) const;
 };
 
+// At most this many control points. Far more than any hand-made function
+// needs (and more than a 16-bit range has distinct values); it bounds the
+// memory and the baking time a file can demand (a 229 MB file of points
+// took 2.6 GB before). A 2D function has at most kMaxTf2dWidgets widgets.
+constexpr std::size_t kMaxTransferFunctionPoints = 65536;
+
 class TransferFunction {
 public:
     TransferFunction() = default;
+    // Throws voxlab::Error for a point that is not finite or outside 0..1,
+    // or more than kMaxTransferFunctionPoints points.
     explicit TransferFunction(std::vector<ControlPoint> points);
 
     // Points sorted by value (stable for equal values, which make a step).

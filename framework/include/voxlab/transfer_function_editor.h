@@ -211,8 +211,9 @@ std::vector<std::string> transferFunctionPresets(const std::string& datasetName,
 
 // What the buttons do, without a window: load (a relative path is found
 // through the dataset search path) or save as JSON. On success *tf (or the
-// file) is replaced and *message says what was done; on failure *tf is left
-// as it was and *message reads "error: " and the reason. Never throws.
+// file, atomically: see atomic_file.h) is replaced and *message says what
+// was done; on failure *tf (or the file) is left as it was and *message
+// reads "error: " and the reason. Never throws.
 bool loadTransferFunctionFile(const std::string& path, TransferFunction* tf, std::string* message);
 bool loadTransferFunctionFile(const std::string& path, TransferFunction2D* tf, std::string* message);
 bool saveTransferFunctionFile(const std::string& path, const TransferFunction& tf, std::string* message);

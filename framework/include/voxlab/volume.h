@@ -40,6 +40,27 @@ struct Histogram {
 // refuse anything larger before allocating, with a one-line error.
 constexpr std::uint64_t kMaxVoxels = std::uint64_t(1) << 31;
 
+// The memory cap on a volume's voxel data, checked by the loaders and the
+// phantoms against the declared size before anything is allocated: 4 GiB
+// by default (2^31 float voxels would be 8 GiB), or the whole number of MiB
+// in the environment variable VOXLAB_MAX_VOLUME_MIB (1..kMaxVolumeCapMiB;
+// empty counts as unset). The command line's --max-volume-mib (render,
+// view, bench, info) sets that variable; child processes (the grader's
+// workers) inherit it. Precomputed gradients answer to it too. The error:
+// "big.nrrd: 1024x1024x2048 float32 is 8192 MiB, over the 4096 MiB volume
+// cap (set VOXLAB_MAX_VOLUME_MIB to raise it)".
+constexpr std::uint64_t kDefaultVolumeCapMiB = 4096;
+constexpr std::uint64_t kMaxVolumeCapMiB = std::uint64_t(1) << 20;  // 1 TiB: beyond any real machine
+constexpr const char* kVolumeCapVariable = "VOXLAB_MAX_VOLUME_MIB";
+
+// The cap in MiB, read from the environment on each call (so that tests and
+// the command line can change it). Throws voxlab::Error naming the variable
+// when its value is not a whole number in 1..kMaxVolumeCapMiB.
+std::uint64_t volumeCapMiB();
+// Parses a cap given in MiB; `source` names where it came from in errors
+// ("VOXLAB_MAX_VOLUME_MIB", "option --max-volume-mib").
+std::uint64_t parseVolumeCapMiB(const std::string& text, const std::string& source);
+
 class Volume {
 public:
     Volume() = default;
@@ -94,7 +115,8 @@ Volume loadNrrd(const std::string& path);
 Volume loadFld(const std::string& path);
 Volume loadDatRaw(const std::string& path);
 
-// Writes an attached, raw (or gzip) NRRD. Used by tests and tools.
+// Writes an attached, raw (or gzip) NRRD through writeFileAtomically (a
+// failed save leaves the old file). Used by tests and tools.
 void saveNrrd(const Volume& volume, const std::string& path, bool gzip = false);
 
 // Built-in analytic phantoms, addressed as "phantom:NAME[:SIZE]" (SIZE is

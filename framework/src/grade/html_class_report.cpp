@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "html_text.h"
+#include "voxlab/atomic_file.h"
 #include "voxlab/html_report.h"
 
 namespace voxlab {
@@ -160,8 +161,8 @@ void writeClassHtmlReport(const json& gradebook, const std::string& dir) {
             "status and message.</p></section></main>\n<footer>Written by voxlab grade. Each name links to that "
             "submission's report.</footer>\n";
 
-    html::writeFile((std::filesystem::path(dir) / "index.html").string(),
-                    html::page(title, body, html::sortableTableScript));
+    writeFileAtomically((std::filesystem::path(dir) / "index.html").string(),
+                        html::page(title, body, html::sortableTableScript));
 }
 
 }  // namespace voxlab

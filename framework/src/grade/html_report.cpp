@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "html_text.h"
+#include "voxlab/atomic_file.h"
 
 namespace voxlab {
 namespace {
@@ -320,8 +321,8 @@ void writeHtmlReport(const json& results, const std::string& reportDir) {
     body += "</main>\n<footer>Written by voxlab grade. This folder is self-contained and works offline.</footer>\n";
 
     const std::string name = html::text(results, "name");
-    html::writeFile((fs::path(reportDir) / "index.html").string(),
-                    html::page((name.empty() ? std::string("Submission") : name) + " \u2013 voxlab report", body, ""));
+    writeFileAtomically((fs::path(reportDir) / "index.html").string(),
+                        html::page((name.empty() ? std::string("Submission") : name) + " \u2013 voxlab report", body, ""));
 }
 
 }  // namespace voxlab

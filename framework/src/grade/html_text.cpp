@@ -1,16 +1,11 @@
-// voxlab: escaping, optional fields, formatting and file writing for the
-// grader's HTML reports.
+// voxlab: escaping, optional fields and formatting for the grader's HTML
+// reports (they are saved with writeFileAtomically).
 #include "html_text.h"
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
-
-#include "voxlab/error.h"
 
 namespace voxlab::html {
 
@@ -140,14 +135,6 @@ std::string page(const std::string& title, const std::string& body, const std::s
                       "<body>\n" + body;
     if (!script.empty()) out += "<script>\n" + script + "</script>\n";
     return out + "</body>\n</html>\n";
-}
-
-void writeFile(const std::string& path, const std::string& content) {
-    std::ofstream file(path, std::ios::binary | std::ios::trunc);
-    if (!file) throw Error(path + ": cannot write (" + std::strerror(errno) + ")");
-    file.write(content.data(), std::streamsize(content.size()));
-    file.close();
-    if (!file) throw Error(path + ": cannot write (write failed)");
 }
 
 }  // namespace voxlab::html

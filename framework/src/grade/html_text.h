@@ -1,6 +1,6 @@
 // voxlab: small pieces shared by the grader's HTML reports — escaping text
 // from results, reading optional JSON fields without throwing, formatting
-// numbers and scores, and writing the page.
+// numbers and scores, and the page around a body.
 #pragma once
 
 #include <optional>
@@ -51,8 +51,5 @@ std::string page(const std::string& title, const std::string& body, const std::s
 // (html_report_style.cpp).
 extern const char* const reportStyleSheet;
 extern const char* const sortableTableScript;
-
-// Writes `content` to `path`; throws voxlab::Error naming the path.
-void writeFile(const std::string& path, const std::string& content);
 
 }  // namespace voxlab::html

@@ -5,7 +5,9 @@
 #include <charconv>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <system_error>
 
 #include "voxlab/error.h"
 
@@ -26,11 +28,31 @@ std::string oneLine(std::string msg) {
     return msg;
 }
 
+std::string readCappedText(std::istream& in, const std::string& path) {
+    const std::string tooLarge = path + ": more than " + std::to_string(kMaxTextInputBytes >> 20) +
+                                 " MiB (the limit for a text input)";
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);  // fails for pipes and devices: read them
+    if (!ec && size > kMaxTextInputBytes) throw Error(tooLarge);
+    // Read in chunks up to one byte past the limit: the file may have grown,
+    // or not be a regular file at all.
+    std::string text;
+    char chunk[1 << 16];
+    while (in && text.size() <= kMaxTextInputBytes) {
+        in.read(chunk, sizeof chunk);
+        text.append(chunk, std::size_t(in.gcount()));
+    }
+    if (text.size() > kMaxTextInputBytes) throw Error(tooLarge);
+    if (in.bad()) throw Error(path + ": cannot read");
+    return text;
+}
+
 nlohmann::json readJsonFile(const std::string& path) {
-    std::ifstream in(path);
+    std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path + ": cannot open: " + std::strerror(errno));
+    const std::string text = readCappedText(in, path);
     try {
-        return nlohmann::json::parse(in);
+        return nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         throw Error(path + ": " + oneLine(e.what()));
     }

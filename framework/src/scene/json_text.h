@@ -2,6 +2,8 @@
 // (scene.cpp, transfer_function.cpp).
 #pragma once
 
+#include <cstddef>
+#include <istream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -15,8 +17,20 @@ double shortFloat(float f);
 // nlohmann's messages without their "[json.exception...] " tag, on one line.
 std::string oneLine(std::string msg);
 
-// Parses a JSON file; a missing file or a syntax error becomes one
-// voxlab::Error line that starts with the path.
+// The largest text input read whole (scenes, transfer functions, grading
+// manifests, viewer scripts): 16 MiB. A parsed JSON document takes up to
+// about 30 times its text in memory (measured: 16 MiB of "{}," became 480
+// MiB), and the largest real input, a transfer function at its point cap
+// written with dump(2), is about 7 MiB.
+constexpr std::size_t kMaxTextInputBytes = std::size_t(16) << 20;
+
+// Reads all of `in`, refusing more than kMaxTextInputBytes before holding
+// it: "<path>: more than 16 MiB (the limit for a text input)". A regular
+// file's size is checked first, so a huge one is refused without reading.
+std::string readCappedText(std::istream& in, const std::string& path);
+
+// Parses a JSON file; a missing file, one over kMaxTextInputBytes or a
+// syntax error becomes one voxlab::Error line that starts with the path.
 nlohmann::json readJsonFile(const std::string& path);
 
 }  // namespace voxlab::json_text

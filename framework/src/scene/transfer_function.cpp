@@ -58,9 +58,17 @@ ControlPoint parsePoint(const json& j, const std::string& at) {
     return p;
 }
 
+// "N control points (at most 65536)", the one wording for every place that
+// counts them.
+std::string tooManyPoints(std::size_t n) {
+    return std::to_string(n) + " control points (at most " + std::to_string(kMaxTransferFunctionPoints) + ")";
+}
+
 }  // namespace
 
 TransferFunction::TransferFunction(std::vector<ControlPoint> points) : points_(std::move(points)) {
+    if (points_.size() > kMaxTransferFunctionPoints)
+        throw Error("transfer function: " + tooManyPoints(points_.size()));
     for (size_t i = 0; i < points_.size(); ++i) {
         const ControlPoint& p = points_[i];
         const std::string at = "transfer function: control point " + std::to_string(i);
@@ -170,6 +178,7 @@ TransferFunction TransferFunction::fromJson(const json& j, const std::string& wh
     }
     if (!arr->is_array()) throw Error(pre + label + ": expected an array of control points");
     if (arr->empty()) throw Error(pre + label + ": expected at least 1 control point");
+    if (arr->size() > kMaxTransferFunctionPoints) throw Error(pre + label + ": " + tooManyPoints(arr->size()));
 
     std::vector<ControlPoint> points;
     for (size_t i = 0; i < arr->size(); ++i)

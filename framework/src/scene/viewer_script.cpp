@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <sstream>
 
+#include "json_text.h"
 #include "voxlab/error.h"
 #include "voxlab/scene.h"
 
@@ -251,9 +252,7 @@ std::vector<ViewerStep> parseViewerScriptText(const std::string& text, const std
 std::vector<ViewerStep> parseViewerScript(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path + ": cannot open viewer script");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parseViewerScriptText(text.str(), path);
+    return parseViewerScriptText(json_text::readCappedText(in, path), path);
 }
 
 std::string stepLocation(const ViewerStep& step) { return step.file + ":" + std::to_string(step.line); }

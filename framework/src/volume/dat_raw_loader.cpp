@@ -71,7 +71,8 @@ Volume loadDatRaw(const std::string& path) {
         !parseInt(words[2], n[2])) {
         fail(path, "invalid Resolution '" + resolution + "' (need 3 integers)");
     }
-    std::uint64_t count = checkedVoxelCount(path, "Resolution", n[0], n[1], n[2]);
+    // Checked against kMaxVoxels and the volume cap before anything is read.
+    const std::uint64_t expected = checkedVolumeBytes(path, "Resolution", n[0], n[1], n[2], type);
 
     glm::dvec3 spacing(1.0);
     if (auto it = fields.find("slicethickness"); it != fields.end()) {
@@ -92,7 +93,7 @@ Volume loadDatRaw(const std::string& path) {
         fail(path, "data file '" + object + "' not found");
     }
     std::size_t elem = voxelTypeSize(type);
-    std::vector<std::uint8_t> bytes = readRawVoxels(path, rawPath, 0, count * elem);
+    std::vector<std::uint8_t> bytes = readRawVoxels(path, rawPath, 0, expected);
     if (!hostIsLittleEndian()) swapByteOrder(bytes, elem);
     return buildVolume(path, glm::ivec3(int(n[0]), int(n[1]), int(n[2])), type, spacing,
                        std::move(bytes));

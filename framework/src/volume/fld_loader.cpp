@@ -80,7 +80,7 @@ Volume loadFld(const std::string& path) {
     if (ndim != 3) fail(path, "ndim " + std::to_string(ndim) + " is not supported (need 3)");
     long long n[3];
     for (int a = 0; a < 3; ++a) n[a] = intField(path, fields, "dim" + std::to_string(a + 1), 0, true);
-    std::uint64_t count = checkedVoxelCount(path, "dims", n[0], n[1], n[2]);
+    checkedVoxelCount(path, "dims", n[0], n[1], n[2]);  // the bytes, once the type is known
 
     long long veclen = intField(path, fields, "veclen", 1, false);
     if (veclen != 1) fail(path, "veclen " + std::to_string(veclen) + " is not supported (need 1)");
@@ -99,8 +99,9 @@ Volume loadFld(const std::string& path) {
         fail(path, "field '" + fieldIt->second + "' is not supported (need uniform)");
     }
 
+    const std::uint64_t expected = checkedVolumeBytes(path, "dims", n[0], n[1], n[2], type);
     std::size_t elem = voxelTypeSize(type);
-    std::vector<std::uint8_t> bytes = readRawVoxels(path, path, headerEnd + 2, count * elem);
+    std::vector<std::uint8_t> bytes = readRawVoxels(path, path, headerEnd + 2, expected);
     if (!hostIsLittleEndian()) swapByteOrder(bytes, elem);
     return buildVolume(path, glm::ivec3(int(n[0]), int(n[1]), int(n[2])), type, glm::dvec3(1.0),
                        std::move(bytes));

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <thread>
 
+#include "voxlab/error.h"
+
 namespace voxlab {
 
 const char* gradientEstimatorName(GradientEstimator e) {
@@ -75,9 +77,24 @@ void forEachSlice(int slices, F body) {
     for (auto& th : pool) th.join();
 }
 
+// The gradient volume and its float copy of the values take 16 bytes a
+// voxel, up to 16 times the volume itself (24 GiB for the largest uint8
+// volume the loaders accept), so they answer to the same cap.
+void checkGradientMemory(const Volume& volume) {
+    const std::uint64_t bytes = std::uint64_t(volume.voxelCount()) * (sizeof(glm::vec3) + sizeof(float));
+    const std::uint64_t capMiB = volumeCapMiB();
+    if (bytes <= capMiB << 20) return;
+    const glm::ivec3 d = volume.dims();
+    throw Error((volume.name().empty() ? std::string("volume") : volume.name()) + ": precomputed gradients of " +
+                std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z) + " voxels take " +
+                std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB, over the " + std::to_string(capMiB) +
+                " MiB volume cap (set " + kVolumeCapVariable + " to raise it)");
+}
+
 }  // namespace
 
 std::vector<glm::vec3> computeGradients(const Volume& volume, GradientEstimator estimator) {
+    checkGradientMemory(volume);
     const std::vector<float> values = valuesOf(volume);
     const Grid grid{volume.dims(), &values};
     // A difference per voxel step becomes one per unit length (the smallest

@@ -17,12 +17,13 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
+#include <string>
 
 #include <zlib.h>
 
 #include "volume_io_util.h"
+#include "voxlab/atomic_file.h"
 
 namespace voxlab {
 
@@ -197,7 +198,8 @@ Volume loadNrrd(const std::string& path) {
     for (int a = 0; a < 3; ++a) {
         if (!parseInt(sizes[a], n[a])) fail(path, "invalid sizes '" + sizesText + "'");
     }
-    std::uint64_t count = checkedVoxelCount(path, "sizes", n[0], n[1], n[2]);
+    // Checked against kMaxVoxels and the volume cap before anything is read.
+    const std::uint64_t expected = checkedVolumeBytes(path, "sizes", n[0], n[1], n[2], type);
     glm::dvec3 spacing = parseSpacing(path, h);
 
     const std::string& encodingText = require(path, h, "encoding");
@@ -237,7 +239,6 @@ Volume loadNrrd(const std::string& path) {
     }
 
     const std::size_t elem = voxelTypeSize(type);
-    const std::uint64_t expected = count * elem;
     std::vector<std::uint8_t> bytes =
         gzip ? inflateGzipFile(path, dataPath, offset, std::uint64_t(skip), expected)
              : readRawVoxels(path, dataPath, offset + std::uint64_t(skip), expected);
@@ -268,7 +269,8 @@ std::string exactText(double v) {
     return ec == std::errc() ? std::string(buf, end) : std::to_string(v);
 }
 
-void writeGzip(std::ofstream& out, const std::string& path, const std::vector<std::uint8_t>& data) {
+// The gzip encoding of `data`, appended to `out` chunk by chunk.
+void appendGzip(std::string& out, const std::string& path, const std::vector<std::uint8_t>& data) {
     z_stream zs{};
     if (deflateInit2(&zs, Z_DEFAULT_COMPRESSION, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
         fail(path, "cannot initialise zlib");
@@ -287,39 +289,37 @@ void writeGzip(std::ofstream& out, const std::string& path, const std::vector<st
         zs.avail_out = static_cast<uInt>(chunk.size());
         ret = deflate(&zs, fed == data.size() && zs.avail_in == 0 ? Z_FINISH : Z_NO_FLUSH);
         if (ret == Z_STREAM_ERROR) fail(path, "gzip compression failed");
-        out.write(reinterpret_cast<const char*>(chunk.data()),
-                  static_cast<std::streamsize>(chunk.size() - zs.avail_out));
+        out.append(reinterpret_cast<const char*>(chunk.data()), chunk.size() - zs.avail_out);
     }
+}
+
+std::string nrrdHeader(const Volume& volume, bool gzip) {
+    const glm::ivec3 d = volume.dims();
+    const glm::dvec3 s = volume.spacing();
+    std::string h = "NRRD0004\n# written by voxlab\ntype: " + std::string(nrrdTypeName(volume.type())) +
+                    "\ndimension: 3\nsizes: " + std::to_string(d.x) + " " + std::to_string(d.y) + " " +
+                    std::to_string(d.z) + "\nspacings: " + exactText(s.x) + " " + exactText(s.y) + " " +
+                    exactText(s.z) + "\n";
+    if (voxelTypeSize(volume.type()) > 1) h += std::string("endian: ") + (hostIsLittleEndian() ? "little" : "big") + "\n";
+    return h + "encoding: " + (gzip ? "gzip" : "raw") + "\n\n";
 }
 
 }  // namespace
 
+// The whole file is put together in memory and saved by writeFileAtomically,
+// so that a failed save (a full disk, a missing folder) leaves the old file
+// as it was and says so. That costs a second copy of the voxels while it
+// runs (less for gzip); saveNrrd is for tests and tools, not for the loaders.
 void saveNrrd(const Volume& volume, const std::string& path, bool gzip) {
     if (volume.voxelCount() == 0) fail(path, "cannot save an empty volume");
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (!out) fail(path, "cannot open file for writing");
-
-    glm::ivec3 d = volume.dims();
-    glm::dvec3 s = volume.spacing();
-    out << "NRRD0004\n"
-        << "# written by voxlab\n"
-        << "type: " << nrrdTypeName(volume.type()) << "\n"
-        << "dimension: 3\n"
-        << "sizes: " << d.x << " " << d.y << " " << d.z << "\n"
-        << "spacings: " << exactText(s.x) << " " << exactText(s.y) << " " << exactText(s.z) << "\n";
-    if (voxelTypeSize(volume.type()) > 1) {
-        out << "endian: " << (hostIsLittleEndian() ? "little" : "big") << "\n";
-    }
-    out << "encoding: " << (gzip ? "gzip" : "raw") << "\n\n";
-
+    std::string file = nrrdHeader(volume, gzip);
     if (gzip) {
-        writeGzip(out, path, volume.bytes());
+        appendGzip(file, path, volume.bytes());
     } else {
-        out.write(reinterpret_cast<const char*>(volume.bytes().data()),
-                  static_cast<std::streamsize>(volume.bytes().size()));
+        file.reserve(file.size() + volume.bytes().size());
+        file.append(reinterpret_cast<const char*>(volume.bytes().data()), volume.bytes().size());
     }
-    out.flush();
-    if (!out) fail(path, "write failed");
+    writeFileAtomically(path, file);
 }
 
 }  // namespace voxlab

@@ -187,6 +187,15 @@ Volume makePhantom(const std::string& spec) {
         n = int(v);
     }
 
+    const std::vector<std::string> names = phantomNames();
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+        std::string known;
+        for (const std::string& p : names) known += (known.empty() ? "" : ", ") + p;
+        detail::fail(spec, "unknown phantom '" + name + "' (known: " + known + ")");
+    }
+    // The volume cap applies to phantoms too (a 512^3 float phantom is 512 MiB).
+    detail::checkedVolumeBytes(spec, "size", n, n, n, name == "shells" ? VoxelType::UInt8 : VoxelType::Float32);
+
     auto centre = [](int i) { return i + 0.5; };
     if (name == "sphere") {
         return floatVolume(spec, n, [&](int i, int j, int k) {
@@ -198,11 +207,7 @@ Volume makePhantom(const std::string& spec) {
     if (name == "shepp-logan") return makeSheppLogan(spec, n);
     if (name == "ramp-x") return floatVolume(spec, n, [&](int i, int, int) { return centre(i); });
     if (name == "ramp-y") return floatVolume(spec, n, [&](int, int j, int) { return centre(j); });
-    if (name == "ramp-z") return floatVolume(spec, n, [&](int, int, int k) { return centre(k); });
-
-    std::string known;
-    for (const std::string& p : phantomNames()) known += (known.empty() ? "" : ", ") + p;
-    detail::fail(spec, "unknown phantom '" + name + "' (known: " + known + ")");
+    return floatVolume(spec, n, [&](int, int, int k) { return centre(k); });  // ramp-z, the last name left
 }
 
 }  // namespace voxlab

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <sstream>
 
@@ -69,6 +70,34 @@ std::string dimsText(glm::ivec3 d) {
 }
 
 }  // namespace
+
+namespace {
+
+// `text` as it may appear in a one-line message: control characters shown
+// as '?', at most 40 characters.
+std::string printable(const std::string& text) {
+    std::string out = text.substr(0, 40);
+    for (char& c : out)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return text.size() > 40 ? out + "..." : out;
+}
+
+}  // namespace
+
+std::uint64_t parseVolumeCapMiB(const std::string& text, const std::string& source) {
+    long long mib = 0;
+    if (!detail::parseInt(detail::trim(text), mib) || mib < 1 || std::uint64_t(mib) > kMaxVolumeCapMiB) {
+        throw Error(source + ": expected a whole number of MiB from 1 to " + std::to_string(kMaxVolumeCapMiB) +
+                    ", got '" + printable(text) + "'");
+    }
+    return std::uint64_t(mib);
+}
+
+std::uint64_t volumeCapMiB() {
+    const char* value = std::getenv(kVolumeCapVariable);
+    if (!value || !*value) return kDefaultVolumeCapMiB;
+    return parseVolumeCapMiB(value, kVolumeCapVariable);
+}
 
 Volume::Volume(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing,
                std::vector<std::uint8_t> bytes, std::string name)

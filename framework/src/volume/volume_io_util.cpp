@@ -94,8 +94,8 @@ std::string fileExtension(const std::string& path) {
 namespace {
 
 // Output bookkeeping for inflateGzip: the first `skip` bytes go to a scratch
-// buffer and are dropped, the next `expected` go to `out`, which grows
-// geometrically as data arrives.
+// buffer and are dropped, the next `expected` go to `out`, which grows as
+// data arrives (grow()) and never past `expected`.
 struct InflateTarget {
     std::uint64_t skip, expected;
     std::uint64_t skipped = 0, produced = 0;
@@ -111,16 +111,27 @@ struct InflateTarget {
             zs.next_out = scratch;
             zs.avail_out = static_cast<uInt>(std::min<std::uint64_t>(sizeof scratch, skip - skipped));
         } else if (produced < expected) {
-            if (out.size() == produced) {
-                std::uint64_t grown = std::max<std::uint64_t>(2 * out.size(), 1 << 20);
-                out.resize(static_cast<std::size_t>(std::min(grown, expected)));
-            }
+            if (out.size() == produced) grow();
             zs.next_out = out.data() + produced;
             zs.avail_out = static_cast<uInt>(std::min<std::uint64_t>(out.size() - produced, 1u << 30));
         } else {
             zs.next_out = scratch;
             zs.avail_out = 1;
         }
+    }
+
+    // Makes room for more output. The memory follows the data that really
+    // arrives (a stream that declares 3 GiB and holds 1 KiB costs 1 MiB), and
+    // the sizes are expected/2^k for k = ..., 2, 1, 0, each about twice the
+    // last, at least 1 MiB: the final growth copies at most expected/2 bytes
+    // into a buffer of exactly `expected`, so the peak is 1.5 x the declared
+    // size (capped by checkedVolumeBytes), never more.
+    void grow() {
+        const std::uint64_t wanted = std::max<std::uint64_t>(2 * out.size(), 1 << 20);
+        std::uint64_t size = expected;
+        while (size / 2 >= wanted) size /= 2;
+        out.reserve(static_cast<std::size_t>(size));  // exactly this much, not the vector's own growth
+        out.resize(static_cast<std::size_t>(size));
     }
 
     // Records `n` bytes written since aim(); returns true if they were surplus.
@@ -274,6 +285,20 @@ std::uint64_t checkedVoxelCount(const std::string& path, const std::string& what
         if (count > kMaxVoxels) tooMany();
     }
     return count;
+}
+
+std::uint64_t checkedVolumeBytes(const std::string& path, const std::string& what,
+                                 long long nx, long long ny, long long nz, VoxelType type) {
+    const std::uint64_t bytes = checkedVoxelCount(path, what, nx, ny, nz) * voxelTypeSize(type);
+    const std::uint64_t capMiB = volumeCapMiB(), mib = std::uint64_t(1) << 20;
+    if (bytes > capMiB * mib) {  // both at most 2^33 (8 GiB) and 2^40: no overflow
+        const std::string size = bytes % mib == 0 ? std::to_string(bytes / mib) + " MiB"
+                                                  : std::to_string(bytes) + " bytes";
+        fail(path, std::to_string(nx) + "x" + std::to_string(ny) + "x" + std::to_string(nz) + " " +
+                       voxelTypeName(type) + " is " + size + ", over the " + std::to_string(capMiB) +
+                       " MiB volume cap (set " + kVolumeCapVariable + " to raise it)");
+    }
+    return bytes;
 }
 
 Volume buildVolume(const std::string& path, glm::ivec3 dims, VoxelType type, glm::dvec3 spacing,

@@ -8,12 +8,14 @@
 //  - headers and text descriptions are read through a size cap
 //    (kMaxHeaderBytes), so a file that never ends its header cannot make us
 //    read or allocate much;
-//  - voxel counts from a header are checked against kMaxVoxels
-//    (checkedVoxelCount) before anything is allocated;
+//  - voxel counts from a header are checked against kMaxVoxels, and their
+//    size in bytes against the volume cap (checkedVolumeBytes), before
+//    anything is allocated;
 //  - raw voxel data is checked against the real file size before it is read;
 //  - gzip data is inflated into a buffer that grows as output arrives and
 //    never past the expected size, so a tiny stream cannot trigger a huge
-//    allocation up front.
+//    allocation up front, and a stream that inflates to more is stopped at
+//    the first surplus byte.
 #pragma once
 
 #include <cstddef>
@@ -81,7 +83,9 @@ std::string fileExtension(const std::string& path);
 // "corrupt gzip data (<zlib message>)", "truncated data: expected N bytes,
 // got M", "gzip data is too long: more than N bytes". Concatenated gzip
 // members are accepted; bytes after the end of the stream once `expected`
-// bytes are out are ignored.
+// bytes are out are ignored. The output buffer grows with the data that
+// arrives, never past `expected` (peak 1.5x, while the last growth copies),
+// and inflation stops at the first byte beyond it.
 std::vector<std::uint8_t> inflateGzipFile(const std::string& errorPath, const std::string& dataPath,
                                           std::uint64_t offset, std::uint64_t skip,
                                           std::uint64_t expected);
@@ -105,6 +109,13 @@ std::vector<std::string> splitWords(const std::string& text);
 // kMaxVoxels. `what` names the field in messages ("sizes", "dims", ...).
 std::uint64_t checkedVoxelCount(const std::string& path, const std::string& what,
                                 long long nx, long long ny, long long nz);
+
+// The size of the voxel data in bytes, after checkedVoxelCount and against
+// the volume cap (volume.h): "<path>: 1024x1024x2048 float32 is 8192 MiB,
+// over the 4096 MiB volume cap (set VOXLAB_MAX_VOLUME_MIB to raise it)".
+// Loaders call it once the type is known and before allocating anything.
+std::uint64_t checkedVolumeBytes(const std::string& path, const std::string& what,
+                                 long long nx, long long ny, long long nz, VoxelType type);
 
 // Builds the Volume; a VolumeError from the constructor (e.g. a NaN voxel)
 // is re-thrown as "<path>: <problem>".

@@ -248,7 +248,7 @@ bool TransferFunctionEditor(const char* label, TransferFunction* tf, const Trans
             *selected = hit;
             const ImVec2 at = plot.handle(points[hit]);
             drag = {hit, ImVec2(mouse.x - at.x, mouse.y - at.y), mouse};
-        } else {
+        } else if (points.size() < kMaxTransferFunctionPoints) {  // one more would not construct
             // A new point where the mouse is, coloured like the function there.
             ControlPoint p;
             p.value = snapValue(plot.valueAt(mouse.x), plot, options.valueSnap);

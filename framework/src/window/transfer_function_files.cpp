@@ -5,13 +5,13 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "transfer_function_editor_drawing.h"
+#include "voxlab/atomic_file.h"
 #include "voxlab/error.h"
 #include "voxlab/scene.h"
 #include "voxlab/transfer_function_editor.h"
@@ -67,10 +67,9 @@ template <typename Function>
 bool saveFrom(const std::string& path, const Function& tf, std::string* message) {
     try {
         if (path.empty()) throw Error("no file name given");
-        std::ofstream out(path, std::ios::binary | std::ios::trunc);
-        out << tf.toJson().dump(2) << "\n";
-        out.close();
-        if (!out) throw Error(path + ": cannot write the file");
+        // Atomic: a failed save (a full disk, a missing folder) keeps the
+        // preset that was there, and says why.
+        writeFileAtomically(path, tf.toJson().dump(2) + "\n");
         *message = "saved " + path;
         return true;
     } catch (const std::exception& e) {

@@ -153,6 +153,25 @@ float applyContentScale(GLFWwindow* window) {
     return scale;
 }
 
+// Saves the screenshot asked for this frame (P, the button or a script's
+// step). In the window a failure is shown for a while; a script's
+// screenshots are its output, so there a failure ends the script: the
+// one-line error is printed and false returned.
+bool saveRequestedScreenshot(State& s, bool script) {
+    if (s.screenshotRequest.empty()) return true;
+    const std::string path = s.screenshotRequest;
+    s.screenshotRequest.clear();
+    try {
+        saveWindowScreenshot(s.fbWidth, s.fbHeight, path);
+        if (script) std::printf("%s\n", path.c_str()), std::fflush(stdout);  // no toast next
+        else s.say("saved " + path, 3.0);
+    } catch (const Error& e) {
+        if (script) return std::fprintf(stderr, "voxlab: %s\n", e.what()), false;
+        s.say(e.what(), 6.0);
+    }
+    return true;
+}
+
 }  // namespace
 }  // namespace viewer
 
@@ -211,15 +230,9 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         ++frame;
-        if (!s.screenshotRequest.empty()) {
-            try {
-                saveWindowScreenshot(s.fbWidth, s.fbHeight, s.screenshotRequest);
-                if (script) std::printf("%s\n", s.screenshotRequest.c_str()), std::fflush(stdout);  // no toast next
-                else s.say("saved " + s.screenshotRequest, 3.0);
-            } catch (const Error& e) {
-                s.say(e.what(), 6.0);
-            }
-            s.screenshotRequest.clear();
+        if (!saveRequestedScreenshot(s, script != nullptr)) {
+            exitCode = 1;
+            break;
         }
         if (!options.screenshot.empty() && frame >= std::max(options.frames, 2)) {
             saveWindowScreenshot(s.fbWidth, s.fbHeight, options.screenshot);

@@ -8,12 +8,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "transfer_function_editor_drawing.h"  // inputText for std::string
 #include "viewer_state.h"
+#include "voxlab/atomic_file.h"
 #include "voxlab/camera.h"
 #include "voxlab/error.h"
 #include "voxlab/ray_profile_panel.h"
@@ -169,9 +169,8 @@ void techniquePanel(State& s) {
     if (ImGui::Button("save scene")) {
         const std::string path = s.scenePathField;
         try {
-            std::ofstream out(path);
-            if (!out) throw Error(path + ": cannot write");
-            out << s.scene.toJson().dump(2) << "\n";
+            if (path.empty()) throw Error("save scene: no file name given");
+            writeFileAtomically(path, s.scene.toJson().dump(2) + "\n");  // the old scene survives a failure
             s.scenePath = path;
             s.say("saved " + path);
         } catch (const std::exception& e) {

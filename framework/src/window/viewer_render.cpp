@@ -205,7 +205,9 @@ void saveWindowScreenshot(int width, int height, const std::string& path) {
             img.set(x, y, glm::vec4(p[0], p[1], p[2], 255) / 255.0f);
         }
     const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-    if (!parent.empty()) std::filesystem::create_directories(parent);
+    std::error_code ec;  // a voxlab::Error on failure, not a filesystem_error the viewer would not catch
+    if (!parent.empty() && !std::filesystem::create_directories(parent, ec) && ec)
+        throw Error(path + ": cannot create the folder " + parent.string() + ": " + ec.message());
     savePng(img, path);
 }
 

@@ -264,13 +264,39 @@ TEST(GradingCredit, FallsLinearlyToZeroAtThreeTimesTheThreshold) {
     EXPECT_DOUBLE_EQ(toleranceRatio(m, t), 2.0);
 }
 
+// The stages are what the manifests declare: a new stage folder with a
+// manifest is graded, in its order; a manifest without an order is an error.
+TEST(StageManifests, EveryStageWithAManifestIsGradedInItsOrder) {
+    const fs::path root = scratch("manifests");
+    fs::copy(kSource / "reference", root, fs::copy_options::recursive);
+    const std::vector<std::string> before = gradedStages(root.string());
+    EXPECT_EQ(before.front(), "slicer");
+    EXPECT_EQ(before.size(), 15u);
+    fs::copy(root / "mip", root / "mystage", fs::copy_options::recursive);
+    std::string manifest = readFile(root / "mystage/grading.json");
+    const std::string three = "\"order\": 3,", ninetyNine = "\"order\": 99,";
+    manifest.replace(manifest.find(three), three.size(), ninetyNine);
+    std::ofstream(root / "mystage/grading.json") << manifest;
+    std::vector<std::string> after = gradedStages(root.string());
+    ASSERT_EQ(after.size(), 16u);
+    EXPECT_EQ(after.back(), "mystage");
+    manifest.replace(manifest.find(ninetyNine), ninetyNine.size(), "");
+    std::ofstream(root / "mystage/grading.json") << manifest;
+    try {
+        gradedStages(root.string());
+        ADD_FAILURE() << "a manifest without an order was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("mystage/grading.json: order: required"), std::string::npos) << e.what();
+    }
+}
+
 TEST(StubScan, NamesTheFunctionsStillStubbed) {
     EXPECT_EQ(unimplementedFunctions((kSource / "assignments/composite").string()),
               (std::vector<std::string>{"classify_post", "classify_pre", "jitter_start", "composite_front_to_back",
                                         "composite_back_to_front"}));
     EXPECT_EQ(unimplementedFunctions((kSource / "assignments/texslice3d").string()),
               std::vector<std::string>{"planeBoxPolygon"});
-    for (const std::string& s : stageOrder())
+    for (const std::string& s : gradedStages((kSource / "reference").string()))
         EXPECT_TRUE(unimplementedFunctions((kSource / "reference" / s).string()).empty()) << s;
 }
 

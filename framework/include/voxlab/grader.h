@@ -63,8 +63,9 @@ nlohmann::json gradescopeResults(const nlohmann::json& report);
 // A terminal table: stage, status, score, message.
 std::string summaryTable(const nlohmann::json& report);
 
-// The stage names graded by default: those in teaching order that have a
-// grading.json under `root`.
+// The stage names graded by default: every folder under `root` with a
+// grading.json, in teaching order (the manifests' "order"). Throws when a
+// manifest does not load, so that no stage is silently never graded.
 std::vector<std::string> gradedStages(const std::string& root);
 
 }  // namespace voxlab

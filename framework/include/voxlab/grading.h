@@ -5,6 +5,7 @@
 //
 //   {
 //     "title": "Maximum intensity projection",
+//     "order": 3,                            // its place in teaching order
 //     "points": 10,
 //     "about": "what the scenes test",
 //     "scenes": [ {"name": "bonsai_oblique", "scene": "scenes/bonsai_oblique.json",
@@ -73,6 +74,7 @@ struct StageManifest {
     std::string stage;
     std::string title;
     std::string about;
+    int order = 0;
     double points = 10.0;
     std::vector<GradedScene> scenes;
     std::vector<GradedCheck> checks;
@@ -80,11 +82,13 @@ struct StageManifest {
     std::vector<std::string> cppFunctions;  // stage_library.h names, for C++ stages
 };
 
-// The stages in teaching order (the folder names in reference/).
-const std::vector<std::string>& stageOrder();
-
 // Reads ROOT/<stage>/grading.json. Errors name the file and the key.
 StageManifest loadStageManifest(const std::string& root, const std::string& stage);
+
+// Every stage under ROOT (each folder with a grading.json), in teaching
+// order ("order", then the name). A manifest that does not load is an error:
+// a stage is never silently left out.
+std::vector<StageManifest> stageManifests(const std::string& root);
 
 struct ImageMetrics {
     double fractionOver = 0.0;

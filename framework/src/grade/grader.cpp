@@ -30,8 +30,7 @@ using grading::StageRun;
 
 std::vector<std::string> gradedStages(const std::string& root) {
     std::vector<std::string> stages;
-    for (const std::string& s : stageOrder())
-        if (fs::exists(fs::path(root) / s / "grading.json")) stages.push_back(s);
+    for (const StageManifest& m : stageManifests(root)) stages.push_back(m.stage);
     return stages;
 }
 
@@ -88,7 +87,7 @@ std::vector<std::string> chosenStages(const GraderOptions& options) {
             if (!fs::exists(fs::path(options.referenceRoot) / s / "grading.json"))
                 throw Error("unknown stage '" + s + "' (no " + options.referenceRoot + "/" + s + "/grading.json)");
         std::vector<std::string> stages;  // in teaching order, once each
-        for (const std::string& s : stageOrder())
+        for (const std::string& s : gradedStages(options.referenceRoot))
             if (std::find(options.stages.begin(), options.stages.end(), s) != options.stages.end()) stages.push_back(s);
         return stages;
     }
@@ -125,7 +124,7 @@ void renderExpectedOutputs(const GraderOptions& given) {
     fs::create_directories(options.expectedDir);
     // The reference's C++ stages as a library, loaded by every graded stage.
     std::vector<std::string> sources;
-    for (const std::string& s : stageOrder()) {
+    for (const std::string& s : gradedStages(options.referenceRoot)) {
         std::error_code ec;
         for (const auto& entry : fs::directory_iterator(fs::path(options.referenceRoot) / s, ec))
             if (entry.path().extension() == ".cpp") sources.push_back(entry.path().string());

@@ -16,13 +16,6 @@
 
 namespace voxlab {
 
-const std::vector<std::string>& stageOrder() {
-    static const std::vector<std::string> order = {
-        "slicer",    "sampling", "mip",   "minip",  "average",       "firsthit",   "slab_mip",  "composite",
-        "iso",       "gradient", "shading", "tf2d", "cutting_plane", "texslice2d", "texslice3d"};
-    return order;
-}
-
 namespace {
 
 using nlohmann::json;
@@ -103,6 +96,9 @@ StageManifest loadStageManifest(const std::string& root, const std::string& stag
     StageManifest m;
     m.stage = stage;
     m.title = text(j, "title", path, true);
+    if (!j.contains("order") || !j.at("order").is_number_integer())
+        throw Error(path + ": order: required, a whole number (the stage's place in teaching order)");
+    m.order = j.at("order").get<int>();
     m.about = text(j, "about", path, false);
     m.points = number(j, "points", 10.0, path);
     if (!(m.points >= 0)) throw Error(path + ": points: must be >= 0");
@@ -136,6 +132,19 @@ StageManifest loadStageManifest(const std::string& root, const std::string& stag
     for (const std::string& f : m.cppFunctions)
         if (!isStageFunction(f)) throw Error(path + ": cpp_functions: '" + f + "' is not a C++ stage function");
     return m;
+}
+
+std::vector<StageManifest> stageManifests(const std::string& root) {
+    std::vector<StageManifest> manifests;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(root, ec))
+        if (entry.is_directory() && std::filesystem::exists(entry.path() / "grading.json"))
+            manifests.push_back(loadStageManifest(root, entry.path().filename().string()));
+    if (ec) throw Error(root + ": cannot list the stages: " + ec.message());
+    std::sort(manifests.begin(), manifests.end(), [](const StageManifest& a, const StageManifest& b) {
+        return a.order != b.order ? a.order < b.order : a.stage < b.stage;
+    });
+    return manifests;
 }
 
 ImageMetrics compareForGrading(const Image& expected, const Image& submission, const Tolerance& tolerance,

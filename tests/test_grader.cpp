@@ -264,6 +264,33 @@ TEST(GradingCredit, FallsLinearlyToZeroAtThreeTimesTheThreshold) {
     EXPECT_DOUBLE_EQ(toleranceRatio(m, t), 2.0);
 }
 
+// "Small regions count": a thin feature wrong by 77 levels on 0.37% of the
+// pixels used to pass (under the 0.5% allowed to be anything); the same
+// number of wrong pixels scattered one by one, as rasterisation noise is,
+// still passes.
+TEST(GradingCredit, ACompactGroupOfWrongPixelsFailsWhereScatteredOnesPass) {
+    const Tolerance t;
+    Image expected(128, 128), thin(128, 128), scattered(128, 128);
+    for (Image* img : {&expected, &thin, &scattered})
+        for (std::size_t i = 0; i < img->rgba.size(); ++i) img->rgba[i] = (i % 4 == 3) ? 1.0f : 0.4f;
+    auto set = [](Image& img, int x, int y) {
+        for (int c = 0; c < 3; ++c) img.rgba[(std::size_t(y) * 128 + x) * 4 + c] = 0.4f + 77.0f / 255.0f;
+    };
+    for (int i = 0; i < 60; ++i) set(thin, 30 + i, 40 + i / 3);               // a thin line of 60 pixels
+    for (int i = 0; i < 60; ++i) set(scattered, 3 + (i % 10) * 12, 5 + (i / 10) * 20);  // 60 lone pixels
+    const ImageMetrics line = compareForGrading(expected, thin, t);
+    const ImageMetrics noise = compareForGrading(expected, scattered, t);
+    // The old rule alone let both pass.
+    EXPECT_LT(line.fractionOver, t.maxFraction);
+    EXPECT_LT(noise.fractionOver, t.maxFraction);
+    // The cluster bound alone fails the line outright and lets lone pixels be.
+    EXPECT_EQ(line.largestCluster, 60);
+    EXPECT_GE(line.largestCluster / t.maxCluster, 3.0);
+    EXPECT_EQ(creditForRatio(toleranceRatio(line, t)), 0.0);
+    EXPECT_EQ(noise.largestCluster, 1);
+    EXPECT_LE(noise.largestCluster / t.maxCluster, 1.0);
+}
+
 // The stages are what the manifests declare: a new stage folder with a
 // manifest is graded, in its order; a manifest without an order is an error.
 TEST(StageManifests, EveryStageWithAManifestIsGradedInItsOrder) {

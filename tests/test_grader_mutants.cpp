@@ -17,6 +17,7 @@
 #include "voxlab/gl_context.h"
 #include "voxlab/grader.h"
 #include "voxlab/grading.h"
+#include "voxlab/image_metrics.h"
 #include "voxlab/image.h"
 #include "voxlab/render_engine.h"
 #include "voxlab/scene.h"
@@ -133,6 +134,10 @@ TEST(GradingCalibration, TheReferenceRenderedAnotherWayPasses) {
     std::map<std::string, Volume> volumes;
     double worst = 0.0;
     std::string worstScene;
+    int worstCluster = 0;
+    const std::vector<int> kClusterLevels = {4, 8, 16, 24, 32, 48};
+    std::vector<int> clusterAt(kClusterLevels.size(), 0);
+    std::string worstClusterScene;
     for (const std::string& stage : gradedStages(o.referenceRoot)) {
         for (const GradedScene& graded : loadStageManifest(o.referenceRoot, stage).scenes) {
             for (int variant = 0; variant < 2; ++variant) {
@@ -155,11 +160,23 @@ TEST(GradingCalibration, TheReferenceRenderedAnotherWayPasses) {
                                       << ": fraction over " << m.fractionOver << ", SSIM " << m.ssim << ", FLIP "
                                       << m.flipMean;
                 if (ratio > worst) worst = ratio, worstScene = stage + "/" + graded.name + (variant ? "*" : "");
+                // The cluster bound's calibration: the largest group at several levels.
+                const Image want = loadPng((fs::path(o.expectedDir) / stage / (graded.name + ".png")).string());
+                const Image got = loadPng(png.string());
+                for (std::size_t k = 0; k < kClusterLevels.size(); ++k)
+                    clusterAt[k] = std::max(clusterAt[k], largestCluster(want, got, (kClusterLevels[k] + 0.5) / 255.0));
+                if (m.largestCluster > worstCluster)
+                    worstCluster = m.largestCluster,
+                    worstClusterScene = stage + "/" + graded.name + (variant ? "*" : "");
             }
         }
     }
     std::printf("worst tolerance ratio of the reference against itself: %.3f (%s; * = other filtering)\n", worst,
                 worstScene.c_str());
+    std::printf("largest cluster of pixels off by more than the cluster bound: %d px (%s)\n", worstCluster,
+                worstClusterScene.c_str());
+    for (std::size_t k = 0; k < kClusterLevels.size(); ++k)
+        std::printf("  largest group off by more than %2d levels: %d px\n", kClusterLevels[k], clusterAt[k]);
     fs::remove_all(root);
 }
 

@@ -27,6 +27,28 @@ Image noise(int w, int h, unsigned seed) {
     return img;
 }
 
+// Largest cluster: groups drawn by hand, counted by hand.
+TEST(ImageMetrics, LargestClusterCountsEightConnectedGroups) {
+    Image a(16, 16), b(16, 16);
+    auto off = [&](int x, int y, float by) { b.rgba[(std::size_t(y) * 16 + x) * 4 + 1] = by; };
+    // An L of 5 (4-connected), a diagonal chain of 3 (8-connected only), two singles.
+    for (auto [x, y] : {std::pair{2, 2}, {2, 3}, {2, 4}, {3, 4}, {4, 4}}) off(x, y, 0.5f);
+    for (auto [x, y] : {std::pair{10, 2}, {11, 3}, {12, 4}}) off(x, y, 0.5f);
+    off(8, 12, 0.5f);
+    off(14, 14, 0.5f);
+    EXPECT_EQ(largestCluster(a, b, 0.1), 5);
+    EXPECT_EQ(largestCluster(a, b, 0.6), 0);  // nothing is off by that much
+    off(3, 3, 0.5f);                          // joins nothing new: the L becomes 6
+    EXPECT_EQ(largestCluster(a, b, 0.1), 6);
+    off(9, 1, 0.05f);                         // below the threshold: does not count
+    EXPECT_EQ(largestCluster(a, b, 0.1), 6);
+    EXPECT_EQ(largestCluster(a, b, 0.01), 6); // counted now, but it touches only the chain (3 + 1)
+    // A whole image off: one group, without overflowing anything.
+    Image c(300, 300), d(300, 300);
+    std::fill(d.rgba.begin(), d.rgba.end(), 1.0f);
+    EXPECT_EQ(largestCluster(c, d, 0.5), 300 * 300);
+}
+
 TEST(ImageMetrics, PixelDifferenceAndPsnrOfKnownImages) {
     const Image a = flat(20, 10, 0.25f), b = flat(20, 10, 0.5f);
     Image c = a;

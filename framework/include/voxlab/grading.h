@@ -24,6 +24,10 @@
 // the shipped golden image) and compared on the 8-bit images:
 //   fraction_over  share of pixels where some channel differs by more than
 //                  max_difference grey levels; must be <= max_fraction;
+//   largest_cluster the largest 8-connected group of pixels off by more
+//                  than cluster_difference grey levels; must be
+//                  <= max_cluster pixels (image_metrics.h: noise scatters,
+//                  a mistake on a thin feature clusters);
 //   ssim           mean SSIM (image_metrics.h); must be >= min_ssim;
 //   flip_mean      mean FLIP error (flip.h); must be <= max_flip;
 //   psnr, ssim_min, flip_max, max_difference: shown, not scored.
@@ -51,9 +55,16 @@ namespace voxlab {
 // passes against itself rendered another way (hardware instead of explicit
 // trilinear filtering, another llvmpipe thread count), and every mutant in
 // tests/mutants/ fails (see tests/test_grader_mutants.cpp).
+// The cluster bound: the reference rendered another way (the other
+// filtering path, another thread count) has no group of more than 1 pixel
+// off by more than 8 levels, nor of 2 off by more than 4
+// (GradingCalibration prints this); 4 pixels off by 16 leaves room for that
+// noise, while a wrong thin feature or small structure fails.
 struct Tolerance {
     double maxDifference = 4.0;  // grey levels of 255
     double maxFraction = 0.005;
+    double clusterDifference = 16.0;  // grey levels: "badly wrong"
+    double maxCluster = 4.0;          // pixels of one connected group of badly wrong ones
     double minSsim = 0.98;
     double maxFlip = 0.02;
 };
@@ -93,6 +104,7 @@ std::vector<StageManifest> stageManifests(const std::string& root);
 struct ImageMetrics {
     double fractionOver = 0.0;
     double maxDifference = 0.0;  // grey levels
+    int largestCluster = 0;      // pixels
     double ssim = 1.0, ssimMin = 1.0;
     double flipMean = 0.0, flipMax = 0.0;
     double psnr = 0.0;           // dB; infinity for equal images

@@ -7,6 +7,11 @@
 //  - Pixel difference: per pixel, the largest |a - b| over r, g, b; the
 //    report gives its maximum, its mean and the fraction of pixels above a
 //    threshold.
+//  - Largest cluster: the size, in pixels, of the largest 8-connected group
+//    of pixels whose difference exceeds a threshold. Rasterisation noise
+//    (another filtering path, another thread count) scatters single pixels
+//    or short edge runs; a mistake that shows only on a thin feature or a
+//    small structure makes a compact group, which this counts.
 //  - PSNR: 10 log10(1 / MSE) over all channels, in dB (infinite for equal
 //    images). For display only: it says little about where errors are.
 //  - SSIM (Z. Wang, A. C. Bovik, H. R. Sheikh, E. P. Simoncelli, "Image
@@ -34,6 +39,10 @@ struct PixelDifference {
 };
 
 PixelDifference pixelDifference(const Image& a, const Image& b, double threshold);
+
+// The largest 8-connected group of pixels whose difference (largest |a - b|
+// over r, g, b) exceeds `threshold`; 0 when there is none.
+int largestCluster(const Image& a, const Image& b, double threshold);
 
 double psnr(const Image& a, const Image& b);
 

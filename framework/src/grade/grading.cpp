@@ -39,13 +39,17 @@ Tolerance readTolerance(const json& j, const std::string& where) {
     Tolerance t;
     if (!j.is_object()) throw Error(where + ": expected an object");
     for (const auto& [key, value] : j.items())
-        if (key != "max_difference" && key != "max_fraction" && key != "min_ssim" && key != "max_flip" && key != "why")
+        if (key != "max_difference" && key != "max_fraction" && key != "min_ssim" && key != "max_flip" &&
+            key != "cluster_difference" && key != "max_cluster" && key != "why")
             throw Error(where + ": unknown key '" + key + "'");
     t.maxDifference = number(j, "max_difference", t.maxDifference, where);
     t.maxFraction = number(j, "max_fraction", t.maxFraction, where);
     t.minSsim = number(j, "min_ssim", t.minSsim, where);
     t.maxFlip = number(j, "max_flip", t.maxFlip, where);
-    if (!(t.maxDifference >= 0 && t.maxFraction >= 0 && t.maxFraction < 1 && t.minSsim < 1 && t.maxFlip > 0))
+    t.clusterDifference = number(j, "cluster_difference", t.clusterDifference, where);
+    t.maxCluster = number(j, "max_cluster", t.maxCluster, where);
+    if (!(t.maxDifference >= 0 && t.maxFraction >= 0 && t.maxFraction < 1 && t.minSsim < 1 && t.maxFlip > 0 &&
+          t.clusterDifference >= 0 && t.maxCluster >= 1))
         throw Error(where + ": tolerances out of range");
     return t;
 }
@@ -158,6 +162,7 @@ ImageMetrics compareForGrading(const Image& expected, const Image& submission, c
     const PixelDifference d = pixelDifference(expected, submission, (tolerance.maxDifference + 0.5) / 255.0);
     m.fractionOver = d.fractionAbove;
     m.maxDifference = d.max * 255.0;
+    m.largestCluster = largestCluster(expected, submission, (tolerance.clusterDifference + 0.5) / 255.0);
     const SsimResult s = ssim(expected, submission);
     m.ssim = s.mean;
     m.ssimMin = s.min;
@@ -190,7 +195,8 @@ double toleranceRatio(const ImageMetrics& m, const Tolerance& t) {
     const double pixels = t.maxFraction > 0 ? m.fractionOver / t.maxFraction : (m.fractionOver > 0 ? inf : 0.0);
     const double structure = (1.0 - m.ssim) / (1.0 - t.minSsim);
     const double flipRatio = m.flipMean / t.maxFlip;
-    return std::max({pixels, structure, flipRatio, 0.0});
+    const double cluster = m.largestCluster / t.maxCluster;
+    return std::max({pixels, structure, flipRatio, cluster, 0.0});
 }
 
 double creditForRatio(double ratio) {
@@ -205,7 +211,8 @@ double creditForFailedCases(double failedFraction) {
 }
 
 nlohmann::json toJson(const ImageMetrics& m) {
-    json j = {{"fraction_over", m.fractionOver}, {"max_difference", m.maxDifference}, {"ssim", m.ssim},
+    json j = {{"fraction_over", m.fractionOver}, {"max_difference", m.maxDifference},
+              {"largest_cluster", m.largestCluster}, {"ssim", m.ssim},
               {"ssim_min", m.ssimMin}, {"flip_mean", m.flipMean}, {"flip_max", m.flipMax}};
     if (std::isfinite(m.psnr)) j["psnr"] = m.psnr;
     else j["psnr"] = nullptr;  // identical
@@ -214,7 +221,7 @@ nlohmann::json toJson(const ImageMetrics& m) {
 
 nlohmann::json toJson(const Tolerance& t) {
     return {{"max_difference", t.maxDifference}, {"max_fraction", t.maxFraction}, {"min_ssim", t.minSsim},
-            {"max_flip", t.maxFlip}};
+            {"max_flip", t.maxFlip}, {"cluster_difference", t.clusterDifference}, {"max_cluster", t.maxCluster}};
 }
 
 }  // namespace voxlab

@@ -44,6 +44,43 @@ PixelDifference pixelDifference(const Image& a, const Image& b, double threshold
     return d;
 }
 
+int largestCluster(const Image& a, const Image& b, double threshold) {
+    checkSizes(a, b, "cluster size");
+    const int w = a.width, h = a.height;
+    std::vector<char> bad(std::size_t(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            double worst = 0.0;
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(channel(a, x, y, c) - channel(b, x, y, c)));
+            bad[std::size_t(y) * w + x] = worst > threshold;
+        }
+    // Flood fill from each bad pixel not yet counted (an explicit stack: a
+    // whole image of bad pixels must not overflow the call stack).
+    int largest = 0;
+    std::vector<int> stack;
+    for (int start = 0; start < w * h; ++start) {
+        if (!bad[std::size_t(start)]) continue;
+        bad[std::size_t(start)] = 0;
+        stack.assign(1, start);
+        int size = 0;
+        while (!stack.empty()) {
+            const int p = stack.back();
+            stack.pop_back();
+            ++size;
+            const int px = p % w, py = p / w;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int qx = px + dx, qy = py + dy;
+                    if (qx < 0 || qy < 0 || qx >= w || qy >= h || !bad[std::size_t(qy) * w + qx]) continue;
+                    bad[std::size_t(qy) * w + qx] = 0;
+                    stack.push_back(qy * w + qx);
+                }
+        }
+        largest = std::max(largest, size);
+    }
+    return largest;
+}
+
 double psnr(const Image& a, const Image& b) {
     checkSizes(a, b, "PSNR");
     double sum = 0.0;

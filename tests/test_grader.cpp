@@ -201,6 +201,38 @@ TEST_F(Grader, ASubmissionCannotWriteOutsideItsReportFolder) {
     EXPECT_EQ(stage(report, "texslice3d")["status"], "passed") << stage(report, "texslice3d")["message"];
 }
 
+// Hidden scenes: graded (Gradescope shows them after the due date), but not
+// part of a self-check, of the starter code or of a release's goldens.
+TEST_F(Grader, HiddenScenesAreGradedButNeverShipped) {
+    GraderOptions o = options();
+    o.stages = {"mip"};
+    const json graded = grade(kSource / "reference", "hidden", o);
+    bool found = false;
+    for (const json& scene : stage(graded, "mip")["scenes"])
+        if (scene["name"] == "ct_signed_air") found = scene["hidden"] == true && scene["status"] == "passed";
+    EXPECT_TRUE(found) << stage(graded, "mip").dump(1);
+    const json results = json::parse(readFile(scratchPath("report_hidden") / "results.json"));
+    int later = 0;
+    for (const json& t : results["tests"])
+        if (t["visibility"] == "after_due_date") {
+            ++later;
+            EXPECT_NE(t["name"].get<std::string>().find("ct_signed_air"), std::string::npos) << t["name"];
+        }
+    EXPECT_EQ(later, 1);
+    o.hiddenScenes = false;
+    for (const json& scene : stage(grade(kSource / "reference", "visible", o), "mip")["scenes"])
+        EXPECT_NE(scene["name"], "ct_signed_air");
+    // The starter code: no hidden scene in any manifest, none of their files.
+    for (const std::string& s : gradedStages((kSource / "reference").string()))
+        for (const GradedScene& scene : loadStageManifest((kSource / "reference").string(), s).scenes) {
+            if (!scene.hidden) continue;
+            const fs::path shipped = kSource / "assignments" / s / fs::relative(scene.scenePath, kSource / "reference" / s);
+            EXPECT_FALSE(fs::exists(shipped)) << shipped;
+            for (const GradedScene& a : loadStageManifest((kSource / "assignments").string(), s).scenes)
+                EXPECT_NE(a.name, scene.name) << s;
+        }
+}
+
 TEST_F(Grader, GradescopeResultsFollowTheFormat) {
     const fs::path sub = mutatedCopy(scratch("gs") / "submission", "mip/mip.glsl", "// BEGIN SOLUTION",
                                      "// BEGIN SOLUTION\n    return 0.5;");
@@ -237,9 +269,15 @@ TEST(GradingManifest, BadManifestsGiveOneLineErrors) {
     };
     expectError("{", "grading.json");
     expectError(R"({"points": 10})", "title: missing");
-    expectError(R"({"title": "x", "scenes": [{"name": "a/b", "scene": "s.json"}]})", "name");
-    expectError(R"({"title": "x", "scenes": [{"name": "a", "scene": "s.json", "tolerance": {"max_flp": 1}}]})",
+    expectError(R"({"title": "x", "points": 10})", "order: required");
+    expectError(R"({"title": "x", "order": 1, "scenes": [{"name": "a/b", "scene": "s.json"}]})", "name");
+    expectError(R"({"title": "x", "order": 1, "scenes": [{"name": "a", "scene": "s.json", "tolerance": {"max_flp": 1}}]})",
                 "unknown key 'max_flp'");
+    expectError(R"({"title": "x", "order": 1, "scenes": [{"name": "a", "scene": "s.json", "hidden": "yes"}]})",
+                "hidden: expected true or false");
+    expectError(R"({"title": "x", "order": 1, "cpp_functions": ["planeBoxPolygonn"]})",
+                "'planeBoxPolygonn' is not a C++ stage function");
+    expectError(R"({"title": "x", "order": 1, "files": ["../mip.glsl"]})", "is not a plain");
     EXPECT_THROW(loadStageManifest(root.string(), "nosuchstage"), Error);
 }
 

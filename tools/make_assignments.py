@@ -11,13 +11,17 @@ to assignments/ path for path and replaces each such block with a loud stub:
   C++   throw NotImplemented("function"); (framework/include/voxlab/error.h).
 
 Blocks between `// BEGIN WORKED EXAMPLE` and `// END WORKED EXAMPLE` are
-kept (the slicer is a worked example). Every other file is copied as it is.
+kept (the slicer is a worked example). Grading scenes marked "hidden" in a
+stage's grading.json are left out of its generated manifest, and their scene
+files are not copied: they are graded but never shipped. Every other file is
+copied as it is.
 assignments/README.md is not generated.
 
     python3 tools/make_assignments.py           # (re)writes assignments/
     python3 tools/make_assignments.py --check   # exit 1 if assignments/ has drifted
 """
 import argparse
+import json
 import os
 import re
 import sys
@@ -95,14 +99,34 @@ def generate(path, text):
     return header + "\n".join(out)
 
 
+def without_hidden_scenes(rel, text):
+    """A grading manifest without its hidden scenes (graded, never shipped),
+    and the paths of those scenes' files, which are not shipped either."""
+    manifest = json.loads(text)
+    scenes = manifest.get("scenes", [])
+    hidden = [s for s in scenes if s.get("hidden")]
+    if not hidden:
+        return text, set()
+    manifest["scenes"] = [s for s in scenes if not s.get("hidden")]
+    stage = os.path.dirname(rel)
+    paths = {os.path.normpath(os.path.join(stage, s["scene"])) for s in hidden}
+    return json.dumps(manifest, indent=2, ensure_ascii=False) + "\n", paths
+
+
 def expected_files():
-    files = {}
+    files, hidden = {}, set()
     for folder, _, names in os.walk(REFERENCE):
         for name in sorted(names):
             full = os.path.join(folder, name)
             rel = os.path.relpath(full, REFERENCE)
             with open(full, encoding="utf-8") as f:
-                files[rel] = generate(rel, f.read())
+                text = f.read()
+            if name == "grading.json":
+                text, paths = without_hidden_scenes(rel, text)
+                hidden |= paths
+            files[rel] = generate(rel, text)
+    for rel in hidden:
+        files.pop(rel, None)
     return files
 
 

@@ -12,7 +12,8 @@
 # bench/ are left out (they hold or use the solution); of tests/ only the
 # golden scenes go along, since the handouts render them. The script then
 # checks that no solution text went along: no BEGIN SOLUTION marker, and no
-# three consecutive lines of a solution block in any shipped file.
+# three consecutive lines of a solution block in any shipped file; and that
+# no hidden grading scene went along (its scene file or its golden image).
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -102,6 +103,20 @@ for d, _, files in os.walk(out):
             if tuple(text[i:i + 3]) in runs: leaks.append(f"{os.path.join(d, f)}: {text[i]}")
 if leaks:
     print("make_student_release: solution lines were shipped:", *leaks[:20], sep="\n", file=sys.stderr)
+    sys.exit(1)
+# Hidden grading scenes stay with the instructor: no scene file, no golden image.
+import json
+shipped = []
+for stage in sorted(os.listdir(reference)):
+    manifest = os.path.join(reference, stage, "grading.json")
+    if not os.path.isfile(manifest): continue
+    for scene in json.load(open(manifest)).get("scenes", []):
+        if not scene.get("hidden"): continue
+        for path in (os.path.join(out, "assignments", stage, scene["scene"]),
+                     os.path.join(out, "expected", stage, scene["name"] + ".png")):
+            if os.path.exists(path): shipped.append(path)
+if shipped:
+    print("make_student_release: hidden grading scenes were shipped:", *shipped, sep="\n", file=sys.stderr)
     sys.exit(1)
 PY
 echo "student release: $out ($(du -sh "$out" | cut -f1)); build it with tools/setup.sh, check work with voxlab check"

@@ -95,6 +95,7 @@ int gradeCommand(int argc, char** argv) {
         GraderOptions options = limitsFrom(args);
         options.referenceRoot = args.get("reference").value_or(projectRoot() + "/reference");
         options.expectedDir = *args.get("render-expected");
+        options.hiddenScenes = false;  // a release's goldens: the hidden scenes stay with the instructor
         renderExpectedOutputs(options);
         std::cout << options.expectedDir << "\n";
         return 0;
@@ -169,6 +170,7 @@ int checkCommand(int argc, char** argv) {
     }
     GraderOptions options = limitsFrom(args);
     options.isolateStage = false;
+    options.hiddenScenes = false;
     const fs::path root = projectRoot();
     const fs::path out = args.get("out").value_or("voxlab-check");
     const std::string tree = args.get("submission").value_or((root / "assignments").string());

@@ -33,6 +33,7 @@ struct GraderOptions {
     bool shipped = false;         // expectedDir already holds the outputs (a release's goldens, or
                                   // an earlier renderExpectedOutputs): do not render them again
     bool isolateStage = true;     // false for a self-check: the submission's whole tree runs
+    bool hiddenScenes = true;     // grade scenes marked "hidden" (false: `voxlab check`, a release's goldens)
     std::vector<std::string> stages;  // empty: every stage with a manifest, in teaching order
     double timeLimit = 60.0;          // seconds per stage
     std::size_t memoryLimit = std::size_t(4) << 30;

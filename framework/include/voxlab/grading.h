@@ -9,7 +9,8 @@
 //     "points": 10,
 //     "about": "what the scenes test",
 //     "scenes": [ {"name": "bonsai_oblique", "scene": "scenes/bonsai_oblique.json",
-//                  "weight": 1, "tolerance": {"max_flip": 0.03, "why": "..."}} ],
+//                  "weight": 1, "tolerance": {"max_flip": 0.03, "why": "..."}},
+//                 {"name": "...", "scene": "...", "hidden": true} ],  // graded, never shipped
 //     "checks": [ {"name": "phong_random", "weight": 1} ],    // function_checks.h
 //     "files": ["mip.glsl"],                 // optional: the stage's source files
 //     "cpp_functions": ["planeBoxPolygon"]   // C++ stages: the functions it defines
@@ -73,6 +74,7 @@ struct GradedScene {
     std::string name;
     std::string scenePath;  // absolute
     double weight = 1.0;
+    bool hidden = false;    // graded, but left out of the student release and of `voxlab check`
     Tolerance tolerance;
 };
 

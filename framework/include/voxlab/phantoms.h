@@ -27,6 +27,14 @@
 //                  it; the "modified" high-contrast densities (outer skull
 //                  1.0, brain -0.8, ventricles -0.2, small features +0.1),
 //                  clamped to >= 0. Brain tissue is 0.2, features 0.3, air 0.
+//  ct-signed       int16, in Hounsfield units, like a CT: air -1000
+//                  outside r > 0.45 N; a soft-tissue shell of 40 for
+//                  0.40 N < r <= 0.45 N; fat -100 for 0.25 N < r <= 0.40 N; a
+//                  bone core of 700 for r <= 0.25 N; and an air pocket of
+//                  -800 of radius 0.08 N centred at c + (0.32 N, 0, 0), inside
+//                  the fat. Rays that miss the body see only -1000: every
+//                  value on them is negative, so a maximum started at 0 (or
+//                  a minimum at 0 where all are positive) shows.
 //  ramp-x/y/z      float32. value = the voxel centre's coordinate along that
 //                  axis (i+1/2, j+1/2 or k+1/2): a field with gradient
 //                  exactly 1 along one axis, for sampling and gradient tests.
@@ -55,6 +63,10 @@ double spherePhantomValue(int n, glm::dvec3 p);
 
 // --- shells ------------------------------------------------------------------
 inline double shellsPhantomThickness(int n) { return n / 16.0 > 1.0 ? n / 16.0 : 1.0; }
+
+// --- ct-signed ---------------------------------------------------------------
+// Its value (Hounsfield units) at world position p for edge length n.
+int ctSignedPhantomValue(int n, glm::dvec3 p);
 
 // --- Marschner-Lobb ----------------------------------------------------------
 constexpr double kMarschnerLobbFM = 6.0;

@@ -44,7 +44,7 @@ json gradescopeResults(const json& report) {
                                  {"max_score", rounded(item.value("max_score", 0.0))},
                                  {"status", item.value("status", "") == "passed" ? "passed" : "failed"},
                                  {"output", output},
-                                 {"visibility", "visible"}});
+                                 {"visibility", item.value("hidden", false) ? "after_due_date" : "visible"}});
             }
         if (!any) {
             std::string output = stage.value("message", "");

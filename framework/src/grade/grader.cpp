@@ -94,10 +94,20 @@ std::vector<std::string> chosenStages(const GraderOptions& options) {
     return gradedStages(options.referenceRoot);
 }
 
+// A stage's manifest as graded: without its hidden scenes for a self-check
+// or a release's goldens.
+StageManifest gradedManifest(const std::string& stage, const GraderOptions& options) {
+    StageManifest m = loadStageManifest(options.referenceRoot, stage);
+    if (!options.hiddenScenes)
+        m.scenes.erase(std::remove_if(m.scenes.begin(), m.scenes.end(), [](const GradedScene& s) { return s.hidden; }),
+                       m.scenes.end());
+    return m;
+}
+
 // Renders one stage of the reference and saves what it sent as the
 // expected outputs (EXPECTED/<stage>/<scene>.png, checks/<check>.json).
 void renderExpectedStage(const std::string& stage, const GraderOptions& options) {
-    const StageManifest manifest = loadStageManifest(options.referenceRoot, stage);
+    const StageManifest manifest = gradedManifest(stage, options);
     const fs::path out = fs::path(options.expectedDir) / stage;
     const StageRun run{stage, options.referenceRoot, (fs::path(options.expectedDir) / ".work" / stage).string(), false};
     fs::remove_all(out);
@@ -180,7 +190,7 @@ std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, c
             std::find(stages.begin(), stages.end(), job.stage) - stages.begin();
         json entry;
         try {
-            const StageManifest manifest = loadStageManifest(options.referenceRoot, job.stage);
+            const StageManifest manifest = gradedManifest(job.stage, options);
             const fs::path report = absolute(sub.reportDir);
             const StageRun run{job.stage, absolute(sub.folder), (report / ".work" / job.stage).string(),
                                options.isolateStage};

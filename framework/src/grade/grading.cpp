@@ -116,6 +116,8 @@ StageManifest loadStageManifest(const std::string& root, const std::string& stag
             g.name = text(s, "name", where, true);
             g.scenePath = (folder / text(s, "scene", where, true)).lexically_normal().string();
             g.weight = number(s, "weight", 1.0, where);
+            if (s.contains("hidden") && !s.at("hidden").is_boolean()) throw Error(where + ": hidden: expected true or false");
+            g.hidden = s.value("hidden", false);
             if (s.contains("tolerance")) g.tolerance = readTolerance(s.at("tolerance"), where + ".tolerance");
             if (g.name.empty() || g.name.find_first_of("/\\. ") != std::string::npos)
                 throw Error(where + ": name: use letters, digits and underscores");

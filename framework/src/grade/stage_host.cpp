@@ -101,10 +101,12 @@ Host& host() {
 [[noreturn]] void hostFailed() {
     Host& h = host();
     int status = 0;
-    if (h.pid > 0 && waitpid(h.pid, &status, WNOHANG) == 0) {
+    pid_t ended = h.pid > 0 ? waitpid(h.pid, &status, WNOHANG) : -1;
+    if (ended == 0) {
         kill(h.pid, SIGKILL);  // alive but not answering: it ends here
+        ended = waitpid(h.pid, &status, 0);
     }
-    if (h.pid > 0 && waitpid(h.pid, &status, 0) == h.pid) {
+    if (h.pid > 0 && ended == h.pid) {
         h.pid = 0;
         if (WIFSIGNALED(status)) h.died = std::string("the stage's C++ crashed (") + strsignal(WTERMSIG(status)) + ")";
         else h.died = "the stage's C++ ended its process (exit status " + std::to_string(WEXITSTATUS(status)) + ")";

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "voxlab/atomic_file.h"
@@ -128,21 +129,27 @@ void snapshotOtherStages(const std::string& referenceRoot, const std::string& st
     }
 }
 
-// The manifest and its scene files, which the worker reads.
-void copyTask(const std::string& manifestRoot, const std::string& stage, const fs::path& task) {
-    const fs::path from = fs::path(manifestRoot) / stage;
-    fs::create_directories(task / stage);
-    fs::copy_file(from / "grading.json", task / stage / "grading.json");
-    std::error_code ec;
-    if (fs::is_directory(from / "scenes", ec))
-        for (const auto& entry : fs::recursive_directory_iterator(from / "scenes", ec)) {
-            const fs::path target = task / stage / fs::relative(entry.path(), from);
-            if (entry.is_directory() && !entry.is_symlink()) fs::create_directories(target);
-            else if (entry.is_regular_file() && !entry.is_symlink()) {
-                fs::create_directories(target.parent_path());
-                fs::copy_file(entry.path(), target);
-            }
-        }
+// The manifest and the scene files it grades, which the worker reads;
+// without the hidden scenes unless they are graded.
+void copyTask(const std::string& manifestRoot, const StageManifest& manifest, bool hiddenScenes,
+              const fs::path& task) {
+    const fs::path from = fs::path(manifestRoot) / manifest.stage, to = task / manifest.stage;
+    std::ifstream in(from / "grading.json");
+    nlohmann::json j = nlohmann::json::parse(in);
+    if (!hiddenScenes && j.contains("scenes")) {
+        nlohmann::json kept = nlohmann::json::array();
+        for (const nlohmann::json& s : j["scenes"])
+            if (!s.value("hidden", false)) kept.push_back(s);
+        j["scenes"] = kept;
+    }
+    fs::create_directories(to);
+    writeFileAtomically((to / "grading.json").string(), j.dump(2) + "\n");
+    for (const GradedScene& scene : manifest.scenes) {
+        if (scene.hidden && !hiddenScenes) continue;
+        const fs::path target = to / fs::relative(scene.scenePath, from);
+        fs::create_directories(target.parent_path());
+        fs::copy_file(scene.scenePath, target, fs::copy_options::overwrite_existing);
+    }
 }
 
 ChildLimits sandboxLimits(double seconds, const std::vector<std::string>& readable) {
@@ -214,7 +221,7 @@ RunOutcome runStage(const StageRun& run, const StageManifest& manifest, const Gr
     const fs::path work = run.workDir, lib = work / "lib";
     fs::remove_all(work);
     fs::create_directories(lib);
-    copyTask(options.referenceRoot, run.stage, work / "task");
+    copyTask(options.referenceRoot, manifest, options.hiddenScenes, work / "task");
     std::string root = run.implementationRoot;
     if (run.graded) {
         root = (work / "impl").string();

@@ -67,7 +67,7 @@ std::string errorLine(const std::string& log) {
 json scoreScene(const GradedScene& scene, const StageRun& run, const RunOutcome& outcome, const fs::path& expected,
                 const fs::path& report, const std::string& ended, double* credit) {
     json entry = {{"name", scene.name}, {"max_score", 0.0}, {"score", 0.0}, {"tolerance", toJson(scene.tolerance)},
-                  {"weight", scene.weight}};
+                  {"weight", scene.weight}, {"hidden", scene.hidden}};
     const fs::path want = expected / (scene.name + ".png");
     const std::string base = run.stage + "/" + scene.name;
     *credit = 0.0;

@@ -57,6 +57,18 @@ Volume makeShells(const std::string& name, int n) {
     return Volume(glm::ivec3(n), VoxelType::UInt8, glm::dvec3(1.0), std::move(bytes), name);
 }
 
+Volume makeCtSigned(const std::string& name, int n) {
+    std::vector<std::uint8_t> bytes(std::size_t(n) * n * n * sizeof(std::int16_t));
+    std::size_t idx = 0;
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i, ++idx) {
+                const std::int16_t v = std::int16_t(ctSignedPhantomValue(n, {i + 0.5, j + 0.5, k + 0.5}));
+                std::memcpy(bytes.data() + idx * sizeof v, &v, sizeof v);
+            }
+    return Volume(glm::ivec3(n), VoxelType::Int16, glm::dvec3(1.0), std::move(bytes), name);
+}
+
 // S. R. Marschner and R. J. Lobb, "An evaluation of reconstruction filters
 // for volume rendering", Proc. IEEE Visualization '94, pp. 100-107.
 // The signal is a sum of a z part and a radial (x, y) part, so the
@@ -151,6 +163,16 @@ double spherePhantomValue(int n, glm::dvec3 p) {
     return std::clamp(0.5 + (spherePhantomRadius(n) - r) / kSpherePhantomWidth, 0.0, 1.0);
 }
 
+int ctSignedPhantomValue(int n, glm::dvec3 p) {
+    const glm::dvec3 c(n / 2.0);
+    const double r = glm::length(p - c);
+    if (glm::length(p - (c + glm::dvec3(0.32 * n, 0.0, 0.0))) <= 0.08 * n) return -800;  // the air pocket
+    if (r <= 0.25 * n) return 700;
+    if (r <= 0.40 * n) return -100;
+    if (r <= 0.45 * n) return 40;
+    return -1000;
+}
+
 double marschnerLobbValue(double x, double y, double z) {
     return (marschnerLobbZ(z) + marschnerLobbRadial(x, y)) * kMarschnerLobbScale;
 }
@@ -163,7 +185,7 @@ double sheppLoganValue(glm::dvec3 q) {
 }
 
 std::vector<std::string> phantomNames() {
-    return {"sphere", "shells", "marschner-lobb", "shepp-logan", "ramp-x", "ramp-y", "ramp-z"};
+    return {"sphere", "shells", "ct-signed", "marschner-lobb", "shepp-logan", "ramp-x", "ramp-y", "ramp-z"};
 }
 
 Volume makePhantom(const std::string& spec) {
@@ -194,7 +216,10 @@ Volume makePhantom(const std::string& spec) {
         detail::fail(spec, "unknown phantom '" + name + "' (known: " + known + ")");
     }
     // The volume cap applies to phantoms too (a 512^3 float phantom is 512 MiB).
-    detail::checkedVolumeBytes(spec, "size", n, n, n, name == "shells" ? VoxelType::UInt8 : VoxelType::Float32);
+    detail::checkedVolumeBytes(spec, "size", n, n, n,
+                               name == "shells"      ? VoxelType::UInt8
+                               : name == "ct-signed" ? VoxelType::Int16
+                                                     : VoxelType::Float32);
 
     auto centre = [](int i) { return i + 0.5; };
     if (name == "sphere") {
@@ -203,6 +228,7 @@ Volume makePhantom(const std::string& spec) {
         });
     }
     if (name == "shells") return makeShells(spec, n);
+    if (name == "ct-signed") return makeCtSigned(spec, n);
     if (name == "marschner-lobb") return makeMarschnerLobb(spec, n);
     if (name == "shepp-logan") return makeSheppLogan(spec, n);
     if (name == "ramp-x") return floatVolume(spec, n, [&](int i, int, int) { return centre(i); });

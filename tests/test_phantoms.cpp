@@ -2,6 +2,8 @@
 // independently of the framework's implementation.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -31,6 +33,27 @@ std::string errorOf(const std::string& spec) {
 
 }  // namespace
 
+// ct-signed, at voxels placed by its documented geometry (N = 64, centre
+// 32): the bone core (r <= 16), fat (16 < r <= 25.6), tissue (25.6 < r <=
+// 28.8), air outside, the air pocket of radius 5.12 around (52.48, 32, 32).
+TEST(Phantoms, CtSignedHoldsItsHounsfieldUnits) {
+    const Volume v = loadVolume("phantom:ct-signed:64");
+    ASSERT_EQ(v.type(), VoxelType::Int16);
+    auto at = [&](int i, int j, int k) {  // the stored bytes, not Volume::value
+        std::int16_t x;
+        std::memcpy(&x, v.bytes().data() + ((std::size_t(k) * 64 + j) * 64 + i) * 2, 2);
+        return int(x);
+    };
+    EXPECT_EQ(at(32, 32, 32), 700);   // r = 0.87
+    EXPECT_EQ(at(32, 32, 52), -100);  // r = 20.5
+    EXPECT_EQ(at(32, 59, 32), 40);    // r = 27.5
+    EXPECT_EQ(at(0, 0, 0), -1000);    // a corner
+    EXPECT_EQ(at(52, 32, 32), -800);  // the pocket's centre, inside the fat
+    EXPECT_EQ(at(32, 12, 32), -100);  // the other side: no pocket there
+    EXPECT_EQ(v.minValue(), -1000.0);
+    EXPECT_EQ(v.maxValue(), 700.0);
+}
+
 TEST(Phantoms, NamesAndDefaults) {
     std::vector<std::string> names = phantomNames();
     for (const char* n : {"sphere", "shells", "marschner-lobb", "shepp-logan", "ramp-x", "ramp-y", "ramp-z"}) {
@@ -41,7 +64,10 @@ TEST(Phantoms, NamesAndDefaults) {
         EXPECT_EQ(v.dims(), glm::ivec3(64)) << n;
         EXPECT_EQ(v.spacing(), glm::dvec3(1.0)) << n;
         EXPECT_EQ(v.name(), "phantom:" + n);
-        EXPECT_EQ(v.type(), n == "shells" ? VoxelType::UInt8 : VoxelType::Float32) << n;
+        EXPECT_EQ(v.type(), n == "shells"      ? VoxelType::UInt8
+                            : n == "ct-signed" ? VoxelType::Int16
+                                               : VoxelType::Float32)
+            << n;
     }
     EXPECT_EQ(makePhantom("phantom:sphere:17").dims(), glm::ivec3(17));
     EXPECT_EQ(makePhantom("ramp-y:3").dims(), glm::ivec3(3));

@@ -3,11 +3,7 @@
 // writes where it should not.
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <poll.h>
 #include <signal.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,6 +14,7 @@
 
 #include "voxlab/child_process.h"
 #include "voxlab/error.h"
+#include "support/sandbox_probes.h"
 
 namespace voxlab::testing {
 namespace {
@@ -140,20 +137,6 @@ TEST(ChildProcess, AMissingProgramIsAnExitStatus) {
 
 // --- Isolation (ChildLimits::isolate): what a hostile submission tries. ---
 
-// Processes whose command line holds `token`, anywhere on the machine.
-int processesWith(const std::string& token) {
-    int count = 0;
-    for (const auto& entry : fs::directory_iterator("/proc")) {
-        const std::string name = entry.path().filename().string();
-        if (name.empty() || !std::isdigit(static_cast<unsigned char>(name[0])) || name == std::to_string(getpid()))
-            continue;
-        std::ifstream in(entry.path() / "cmdline", std::ios::binary);
-        std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        if (cmdline.find(token) != std::string::npos && !processGone(std::stoi(name))) ++count;
-    }
-    return count;
-}
-
 ChildLimits isolated(double seconds = 10) {
     ChildLimits limits;
     limits.isolate = true;
@@ -197,31 +180,14 @@ TEST(ChildIsolation, CannotSignalTheParent) {
 }
 
 TEST(ChildIsolation, HasNoNetwork) {
-    const int server = socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    ASSERT_EQ(bind(server, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
-    socklen_t len = sizeof addr;
-    getsockname(server, reinterpret_cast<sockaddr*>(&addr), &len);
-    listen(server, 4);
-    const std::string port = std::to_string(ntohs(addr.sin_port));
-    const std::string script = "echo payload > /dev/tcp/127.0.0.1/" + port + " && echo sent";
-    auto received = [&] {
-        pollfd p = {server, POLLIN, 0};
-        if (poll(&p, 1, 300) <= 0) return false;
-        const int c = accept(server, nullptr, nullptr);
-        char buf[16] = {};
-        const bool got = read(c, buf, sizeof buf) > 0;
-        close(c);
-        return got;
-    };
+    LoopbackServer server;
+    ASSERT_TRUE(server.bound());
+    const std::string script = "echo payload > /dev/tcp/127.0.0.1/" + std::to_string(server.port()) + " && echo sent";
     const ChildResult free = runChild({"/bin/bash", "-c", script}, {});
-    EXPECT_TRUE(received()) << free.output;  // the channel works without isolation
+    EXPECT_TRUE(server.received(300)) << free.output;  // the channel works without isolation
     const ChildResult r = runChild({"/bin/bash", "-c", script}, isolated());
-    EXPECT_FALSE(received()) << r.output;
+    EXPECT_FALSE(server.received(300)) << r.output;
     EXPECT_EQ(r.output.find("sent"), std::string::npos) << r.output;
-    close(server);
 }
 
 TEST(ChildIsolation, ReadsOnlyWhatItIsGiven) {

@@ -11,10 +11,6 @@
 // that the attack really ran and the defence, not an accident, stopped it.
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <poll.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -24,6 +20,7 @@
 #include "voxlab/grader.h"
 #include "voxlab/image.h"
 #include "support/run_command.h"
+#include "support/sandbox_probes.h"
 
 namespace voxlab::testing {
 namespace {
@@ -51,23 +48,6 @@ std::string fingerprint(const fs::path& root) {
     std::string all;
     for (const std::string& s : entries) all += s + "\n";
     return std::to_string(all.size()) + ":" + std::to_string(std::hash<std::string>{}(all));
-}
-
-int processesWith(const std::string& token) {
-    int count = 0;
-    for (const auto& entry : fs::directory_iterator("/proc")) {
-        const std::string name = entry.path().filename().string();
-        if (name.empty() || !std::isdigit(static_cast<unsigned char>(name[0])) || name == std::to_string(getpid()))
-            continue;
-        std::ifstream in(entry.path() / "cmdline", std::ios::binary);
-        const std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        std::ifstream stat(entry.path() / "stat");
-        std::string line;
-        std::getline(stat, line);
-        const bool zombie = line.find(") Z") != std::string::npos;
-        if (cmdline.find(token) != std::string::npos && !zombie) ++count;
-    }
-    return count;
 }
 
 // A C++ stage (texslice3d) whose file is the starter stub plus `attack`, a
@@ -287,17 +267,11 @@ TEST_F(HostileSubmissions, CppCannotKillTheGraderOrLeaveProcesses) {
 }
 
 TEST_F(HostileSubmissions, CppHasNoNetwork) {
-    const int server = socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    ASSERT_EQ(bind(server, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
-    socklen_t len = sizeof addr;
-    getsockname(server, reinterpret_cast<sockaddr*>(&addr), &len);
-    listen(server, 4);
+    LoopbackServer server;
+    ASSERT_TRUE(server.bound());
     const std::string attack =
         "    int s = socket(AF_INET, SOCK_STREAM, 0);\n    sockaddr_in a{};\n    a.sin_family = AF_INET;\n"
-        "    a.sin_port = htons(" + std::to_string(ntohs(addr.sin_port)) + ");\n"
+        "    a.sin_port = htons(" + std::to_string(server.port()) + ");\n"
         "    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);\n"
         "    if (connect(s, (sockaddr*)&a, sizeof a) == 0) { (void)!write(s, \"stolen\", 6); std::puts(\"SENT\"); }\n";
     fs::path sub = submissionWith("network", "texslice3d", "assignments");
@@ -305,9 +279,7 @@ TEST_F(HostileSubmissions, CppHasNoNetwork) {
         << hostileCpp(attack, "#include <arpa/inet.h>\n#include <netinet/in.h>\n#include <sys/socket.h>\n");
     const json s = gradeAndCheck(sub, "texslice3d");
     EXPECT_EQ(s["score"].get<double>(), 0.0);
-    pollfd p = {server, POLLIN, 0};
-    EXPECT_EQ(poll(&p, 1, 200), 0) << "a connection from the submission arrived";
-    close(server);
+    EXPECT_FALSE(server.received(200)) << "a connection from the submission arrived";
 }
 
 TEST_F(HostileSubmissions, CppCannotForgeResultsEvenWithTheGoldenImages) {

@@ -236,7 +236,9 @@ std::string stageSection(const json& stage, const std::string& id, const std::st
         out += "<p class=\"sub\">Graded in " + html::formatSeconds(*seconds) + ".</p>\n";
     const std::string log = html::text(stage, "log");
     if (!log.empty())
-        out += "<details class=\"log-box\" open><summary>Compiler log</summary>" + logBlock(log) + "</details>\n";
+        out += std::string("<details class=\"log-box\" open><summary>") +
+               (html::text(stage, "status") == "compile_error" ? "Compiler log" : "What the stage's process printed") +
+               "</summary>" + logBlock(log) + "</details>\n";
     const json& scenes = html::array(stage, "scenes");
     if (!scenes.empty()) {
         out += "<h3>Scenes</h3>\n";

@@ -97,8 +97,23 @@ public:
             fs::remove(dir, ec);
         }
     }
+    // Kills every process in the cgroup (what the PID namespace does where
+    // there is one; without it, processes that left the process group with
+    // setsid() are still here). Forks in between are caught by the repeats.
+    void killAll() const {
+        if (dir_.empty()) return;
+        for (int round = 0; round < 50; ++round) {
+            std::ifstream in(procs_);
+            bool any = false;
+            for (long pid; in >> pid;)
+                if (pid > 0) any = true, kill(pid_t(pid), SIGKILL);
+            if (!any) return;
+            usleep(10000);
+        }
+    }
     ~PidsCgroup() {
         if (dir_.empty()) return;
+        killAll();
         // The namespace's processes may take a moment to leave after a kill.
         for (int i = 0; i < 100 && rmdir(dir_.c_str()) != 0 && errno == EBUSY; ++i) usleep(10000);
     }
@@ -383,6 +398,7 @@ ChildResult runChild(const std::vector<std::string>& argv, const ChildLimits& li
             result.timedOut = true;
             if (workerPid > 0) kill(workerPid, SIGKILL);
             kill(-pid, SIGKILL);
+            cgroup.killAll();
             waitpid(pid, &waitStatus, 0);
             exited = true;
             exitedAt = now;
@@ -399,8 +415,10 @@ ChildResult runChild(const std::vector<std::string>& argv, const ChildLimits& li
             exited = true;
             exitedAt = std::chrono::steady_clock::now();
             // The worker is gone, and with it its namespace; a non-isolated
-            // child's leftovers go with its process group.
+            // child's leftovers go with its process group, and whatever
+            // detached itself without a namespace with the cgroup.
             kill(-pid, SIGKILL);
+            cgroup.killAll();
         }
     }
     close(out[0]);

@@ -5,8 +5,10 @@
 //    recomputed here from the JSON inputs by independent CPU code (Phong's
 //    formula, trilinear and nearest-neighbour interpolation, central
 //    differences, the half-space clip, the 2D transfer function through the
-//    framework's CPU evaluate(), the slice opacity, the slice axis, and
-//    plane-box polygons by Sutherland-Hodgman clipping);
+//    framework's CPU evaluate(), the slice opacity, the slice axis,
+//    plane-box polygons by Sutherland-Hodgman clipping, the first hit by a
+//    walk along the README's samples, and the isosurface's hit against a
+//    root of the CPU field within the bisection bound);
 //  - the inputs contain the cases the checks promise (lights behind the
 //    surface, exact ties, planes through corners, ...);
 //  - realistic bugs fail: GLSL mutants (copies of a reference stage with one

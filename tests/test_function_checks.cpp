@@ -5,8 +5,10 @@
 //    recomputed here from the JSON inputs by independent CPU code (Phong's
 //    formula, trilinear and nearest-neighbour interpolation, central
 //    differences, the half-space clip, the 2D transfer function through the
-//    framework's CPU evaluate(), the slice opacity, the slice axis, and
-//    plane-box polygons by Sutherland-Hodgman clipping);
+//    framework's CPU evaluate(), the slice opacity, the slice axis,
+//    plane-box polygons by Sutherland-Hodgman clipping, the first hit by a
+//    walk along the README's samples, and the isosurface's hit against a
+//    root of the CPU field within the bisection bound);
 //  - the inputs contain the cases the checks promise (lights behind the
 //    surface, exact ties, planes through corners, ...);
 //  - realistic bugs fail: GLSL mutants (copies of a reference stage with one
@@ -65,7 +67,8 @@ TEST_F(FunctionChecks, ListsOneCheckPerStageWithADescription) {
         {"phong_random", "shading"},         {"trilinear_random_points", "sampling"},
         {"gradient_random_points", "gradient"}, {"half_space_random", "cutting_plane"},
         {"tf2d_classify_random", "tf2d"},    {"slice_axis_random", "texslice2d"},
-        {"plane_box_random", "texslice3d"}};
+        {"plane_box_random", "texslice3d"},  {"first_hit_random_rays", "firsthit"},
+        {"iso_hit_random_rays", "iso"}};
     std::map<std::string, std::string> listed;
     for (const FunctionCheckInfo& info : functionChecks()) {
         listed[info.name] = info.stage;
@@ -391,6 +394,122 @@ TEST_F(FunctionChecks, PlaneBoxPolygonsMatchSutherlandHodgman) {
     for (std::size_t k : {0, 3, 4, 5, 6}) EXPECT_GE(sizes[k], 3) << k << " vertices";
 }
 
+// A marching case's ray and the README's samples along it: sample m at
+// t_entry + (m + 1/2) step, for m < floor(L / step + 1/2) (L = t_exit -
+// t_entry), written from the conventions, not from ray.glsl.
+struct CpuMarch {
+    dvec3 origin, direction;
+    double tEntry, tExit, step;
+    explicit CpuMarch(const json& in)
+        : origin(vec(in["origin"])), direction(vec(in["direction"])), tEntry(in["t_entry"]), tExit(in["t_exit"]),
+          step(in["step"]) {}
+    int samples() const { return int(std::floor((tExit - tEntry) / step + 0.5)); }
+    double t(int m) const { return tEntry + (m + 0.5) * step; }
+    dvec3 at(double t) const { return origin + t * direction; }
+};
+
+// The first sample whose CPU-interpolated value reaches the threshold, in
+// double. The GPU filters in float on llvmpipe (values within ~1e-6) and
+// the inputs keep every sample 1e-3 from the threshold, so the same sample
+// must hit: t within float rounding of t_entry + (m + 1/2) step (1e-5 (1 +
+// t)), the value within 1e-4. (A GPU with 8-bit filter weights reads values
+// up to ~4e-3 off; the grader only compares runs on one machine.)
+TEST_F(FunctionChecks, FirstHitMatchesACpuWalkAlongTheSamples) {
+    const json& check = reference("first_hit_random_rays");
+    const CpuVolume volume(check["fixture"]["volume"]);
+    int hits = 0, misses = 0, fromInside = 0, laterSamples = 0;
+    double closest = 1.0;  // the smallest |value - threshold| over the samples read
+    for (const json* c : casesOf(check, "first_hit")) {
+        const json& in = c->at("input");
+        const CpuMarch ray(in);
+        const double threshold = in["threshold"];
+        int hit = -1;
+        for (int m = 0; m < ray.samples() && hit < 0; ++m) {
+            const double v = volume.trilinear(ray.at(ray.t(m)));
+            closest = std::min(closest, std::abs(v - threshold));
+            if (v >= threshold) hit = m;
+        }
+        const json& out = c->at("output");
+        ASSERT_EQ(out["hit"].get<bool>(), hit >= 0) << c->dump();
+        fromInside += ray.tEntry == 0.0;
+        if (hit < 0) {
+            ++misses;
+            continue;
+        }
+        ++hits;
+        laterSamples += hit >= 3;
+        const double t = ray.t(hit);
+        ASSERT_NEAR(out["t"].get<double>(), t, 1e-5 * (1.0 + t)) << c->dump();
+        ASSERT_NEAR(out["value"].get<double>(), volume.trilinear(ray.at(t)), 1e-4) << c->dump();
+    }
+    std::printf("  %d hits, %d misses, %d from inside the box; closest value to a threshold %.2g\n", hits, misses,
+                fromInside, closest);
+    EXPECT_GE(hits, 80);
+    EXPECT_GE(misses, 30);
+    EXPECT_GE(fromInside, 40);
+    EXPECT_GE(laterSamples, 40);  // hits deep along the ray, where a step's error adds up
+    EXPECT_GE(closest, 0.9e-3);   // the promised margin, measured by this oracle
+}
+
+// The isosurface: the first sample pair whose f - iso changes sign, walked
+// on the CPU field; then the crossing inside that pair located on a fine
+// grid (1000 pieces) and refined by the secant method to 1e-12. After k
+// bisection steps the reference's t must lie within step / 2^(k+1) of that
+// root (the half-width of the last interval), plus float rounding (1e-5 (1
+// + t)); without refinement it is the sample after the crossing, and a ray
+// whose first sample is inside reports that sample.
+TEST_F(FunctionChecks, IsoHitIsWithinTheBisectionBoundOfTheCpuRoot) {
+    const json& check = reference("iso_hit_random_rays");
+    const CpuVolume volume(check["fixture"]["volume"]);
+    int misses = 0, inside = 0, unrefined = 0, refined = 0;
+    double worstRatio = 0.0;  // |t - root| over the bound step / 2^(k+1)
+    for (const json* c : casesOf(check, "iso_hit")) {
+        const json& in = c->at("input");
+        const CpuMarch ray(in);
+        const double iso = in["isovalue"];
+        const int k = in["refinement_steps"];
+        auto g = [&](double t) { return volume.trilinear(ray.at(t)) - iso; };
+        int m = 0;
+        while (m < ray.samples() && (m == 0 ? g(ray.t(0)) < 0.0 : (g(ray.t(m - 1)) < 0.0) == (g(ray.t(m)) < 0.0))) ++m;
+        const json& out = c->at("output");
+        ASSERT_EQ(out["hit"].get<bool>(), m < ray.samples()) << c->dump();
+        if (m == ray.samples()) {
+            ++misses;
+            continue;
+        }
+        const double got = out["t"].get<double>(), slack = 1e-5 * (1.0 + got);
+        if (m == 0 || k == 0) {
+            (m == 0 ? inside : unrefined) += 1;
+            ASSERT_NEAR(got, ray.t(m), slack) << c->dump();
+            continue;
+        }
+        double a = ray.t(m - 1), b = ray.t(m);
+        for (int piece = 1; piece <= 1000; ++piece) {  // the first sign change on a fine grid
+            const double x = ray.t(m - 1) + ray.step * piece / 1000.0;
+            if ((g(x) < 0.0) != (g(a) < 0.0)) {
+                b = x;
+                break;
+            }
+            a = x;
+        }
+        for (int i = 0; i < 60 && std::abs(b - a) > 1e-12; ++i) {  // secant, kept in the bracket
+            const double x = std::clamp(b - g(b) * (b - a) / (g(b) - g(a)), std::min(a, b), std::max(a, b));
+            ((g(x) < 0.0) == (g(a) < 0.0) ? a : b) = x;
+            if (g(x) == 0.0) a = b = x;
+        }
+        const double root = 0.5 * (a + b), bound = std::ldexp(ray.step, -(k + 1));
+        ++refined;
+        worstRatio = std::max(worstRatio, std::abs(got - root) / bound);
+        ASSERT_LE(std::abs(got - root), bound + slack) << c->dump() << "\n  CPU root " << root;
+    }
+    std::printf("  %d misses, %d inside, %d unrefined, %d refined; worst |t - root| = %.2f of the bound\n", misses,
+                inside, unrefined, refined, worstRatio);
+    EXPECT_GE(misses, 20);
+    EXPECT_GE(inside, 40);
+    EXPECT_GE(unrefined, 15);
+    EXPECT_GE(refined, 60);
+}
+
 // ---------------------------------------------------------------------------
 // Bugs the checks must catch
 
@@ -488,6 +607,24 @@ INSTANTIATE_TEST_SUITE_P(
                "f > shape.x && f < shape.y", 10},
         Mutant{"tf2d_colour_not_normalised", "tf2d_classify_random", "tf2d/tf2d.glsl", "colour / weight", "colour",
                120},
+        // t at the sample's start, not its middle: every hit half a step early.
+        Mutant{"first_hit_no_half_step", "first_hit_random_rays", "firsthit/firsthit.glsl",
+               "t = ray.t_entry + (float(m) + 0.5) * u_step;", "t = ray.t_entry + float(m) * u_step;", 90},
+        // The next sample's distance: a step late.
+        Mutant{"first_hit_one_step_late", "first_hit_random_rays", "firsthit/firsthit.glsl",
+               "t = ray.t_entry + (float(m) + 0.5) * u_step;", "t = ray.t_entry + (float(m) + 1.5) * u_step;", 90},
+        // The bisection runs but its result is dropped: t_m on every refined hit.
+        Mutant{"iso_no_bisection", "iso_hit_random_rays", "iso/iso.glsl",
+               "t = u_refinement_steps > 0 ? 0.5 * (lo + hi) : t_now;", "t = t_now;", 90},
+        // u_refinement_steps ignored: no bisection step, the middle of the pair.
+        Mutant{"iso_refinement_ignored", "iso_hit_random_rays", "iso/iso.glsl",
+               "for (int k = 0; k < u_refinement_steps; ++k)", "for (int k = 0; k < 0; ++k)", 90},
+        // One bisection step too few (or too many): step / 2^(k+1) (or
+        // step / 2^(k+2)) from the reference on every refined hit.
+        Mutant{"iso_one_bisection_step_fewer", "iso_hit_random_rays", "iso/iso.glsl",
+               "k < u_refinement_steps;", "k < u_refinement_steps - 1;", 90},
+        Mutant{"iso_one_bisection_step_more", "iso_hit_random_rays", "iso/iso.glsl", "k < u_refinement_steps;",
+               "k <= u_refinement_steps;", 90},
         Mutant{"slice_opacity_unit_ignored", "slice_axis_random", "texslice2d/texslice2d.glsl",
                "along_ray / u_min_spacing", "along_ray", 120}),
     [](const ::testing::TestParamInfo<Mutant>& info) { return std::string(info.param.name); });
@@ -530,6 +667,12 @@ INSTANTIATE_TEST_SUITE_P(
         Mutant{"levoy_other_form", "tf2d_classify_random", "tf2d/tf2d.glsl",
                "u_tf2d_color[i].a * (1.0 - distance / (shape.y * g))",
                "u_tf2d_color[i].a - u_tf2d_color[i].a * distance / shape.y / g", 0},
+        // t from the sample's position instead of its index; the midpoint
+        // as lo + half the length.
+        Mutant{"first_hit_t_projected", "first_hit_random_rays", "firsthit/firsthit.glsl",
+               "t = ray.t_entry + (float(m) + 0.5) * u_step;", "t = dot(p - ray.origin, ray.direction);", 0},
+        Mutant{"iso_midpoint_other_form", "iso_hit_random_rays", "iso/iso.glsl", "float mid = 0.5 * (lo + hi);",
+               "float mid = lo + 0.5 * (hi - lo);", 0},
         Mutant{"slice_opacity_other_form", "slice_axis_random", "texslice2d/texslice2d.glsl",
                "return opacity_correction(alpha, along_ray / u_min_spacing);",
                "return 1.0 - pow(1.0 - alpha, u_slice_spacing / (abs(direction[u_stack_axis]) * u_min_spacing));",
@@ -547,7 +690,8 @@ TEST_F(FunctionChecks, AssignmentStubsAreCaught) {
     EXPECT_EQ(result.failed, result.cases) << result.summary;
     EXPECT_EQ(result.cases, 200);
     for (const char* name : {"trilinear_random_points", "gradient_random_points", "half_space_random",
-                             "tf2d_classify_random", "slice_axis_random"}) {
+                             "tf2d_classify_random", "slice_axis_random", "first_hit_random_rays",
+                             "iso_hit_random_rays"}) {
         const json j = runFunctionCheck(name, assignments);
         EXPECT_EQ(j["not_implemented"], true) << name;
         EXPECT_GT(compareFunctionCheck(name, reference(name), j).failed, 0) << name;

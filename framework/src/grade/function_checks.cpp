@@ -670,6 +670,250 @@ json runPlaneBox(const std::string&) {
 }
 
 // ---------------------------------------------------------------------------
+// Rays for first_hit_random_rays and iso_hit_random_rays
+//
+// Both checks hand first_hit() or iso_hit() a Ray as clip_ray() leaves it
+// (t_entry and t_exit where it enters and leaves the volume's box) and walk
+// the README's samples t_entry + (m + 1/2) step. Their outputs jump where a
+// sample's value equals the threshold or isovalue (the hit moves by a whole
+// step) and where the number of samples changes, so each ray is drawn again
+// until every value it reads keeps clear of those places: then a correct
+// submission that rounds differently (t by accumulation, a midpoint as
+// lo + (hi - lo)/2) gets the same hit, and only the hit's rounding differs.
+
+// Programs for the marching probes: the GPU's filtering (as for the
+// gradient check: the check sees this stage alone), skipping and sample
+// counting off (the empty-space helpers return their argument).
+const ShaderConstants kMarchConstants = {
+    {"u_interpolation", 2}, {"u_skipping", 0}, {"u_count_samples", 0}, {"u_clip_plane", 0}};
+
+// How close (data units) a value may come to the threshold or isovalue, and
+// to the number of samples' jump (L / step + 1/2 an integer). A sample's
+// position differs between correct implementations by ~1e-5 world units,
+// its value by ~1e-5: 1e-3 leaves a factor of 100.
+constexpr double kValueMargin = 1e-3;
+constexpr double kCountMargin = 1e-3;
+
+struct ProbeRay {
+    glm::dvec3 origin{0.0}, direction{0.0};  // as the GPU gets them (floats)
+    double tEntry = 0.0, tExit = 0.0;
+};
+
+// The probe volume's trilinear field in double, clamped to the border
+// voxels: only to keep the inputs clear of jumps (see above).
+double probeField(const probe::ProbeVolume& v, glm::dvec3 p) {
+    const glm::dvec3 u = p / glm::dvec3(v.extent) * glm::dvec3(v.dims) - 0.5;
+    const glm::dvec3 lower = glm::floor(u), w = u - lower;
+    double sum = 0.0;
+    for (int c = 0; c < 8; ++c) {
+        const glm::ivec3 corner(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+        const glm::ivec3 ijk = glm::clamp(glm::ivec3(lower) + corner, glm::ivec3(0), v.dims - 1);
+        const double weight = (corner.x ? w.x : 1.0 - w.x) * (corner.y ? w.y : 1.0 - w.y) * (corner.z ? w.z : 1.0 - w.z);
+        sum += weight * double(v.values[std::size_t((ijk.z * v.dims.y + ijk.y) * v.dims.x + ijk.x)]);
+    }
+    return sum * v.valueScale + v.valueOffset;
+}
+
+// A random unit direction through `through` (inside the box [0, extent]),
+// from `back` before it; t_entry and t_exit by the slab method in double,
+// then rounded to float as the GPU gets them. t_entry is 0 where the origin
+// lies inside the box, as clip_ray() leaves it.
+ProbeRay boxRay(CheckRandom& rng, glm::dvec3 extent, glm::dvec3 through, double back) {
+    ProbeRay ray;
+    ray.direction = unitF32(rng.unitVector());
+    ray.origin = f32(through - back * ray.direction);
+    double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        const double d = ray.direction[a];
+        if (d == 0.0) continue;  // the origin lies between this axis's planes (through does)
+        const double ta = -ray.origin[a] / d, tb = (extent[a] - ray.origin[a]) / d;
+        t0 = std::max(t0, std::min(ta, tb));
+        t1 = std::min(t1, std::max(ta, tb));
+    }
+    ray.tEntry = f32(t0);
+    ray.tExit = f32(t1);
+    return ray;
+}
+
+double sampleT(const ProbeRay& ray, double step, int m) { return ray.tEntry + (m + 0.5) * step; }
+
+// floor(L / step + 1/2) samples (ray.glsl), or -1 where L / step + 1/2 is
+// within kCountMargin of an integer (float rounding could add or drop one).
+int clearSampleCount(const ProbeRay& ray, double step) {
+    const double x = (ray.tExit - ray.tEntry) / step + 0.5;
+    if (std::abs(x - std::round(x)) < kCountMargin) return -1;
+    return int(std::floor(x));
+}
+
+json rayInput(const ProbeRay& ray, double step) {
+    return {{"origin", vecJson(ray.origin)}, {"direction", vecJson(ray.direction)}, {"t_entry", ray.tEntry},
+            {"t_exit", ray.tExit}, {"step", step}};
+}
+
+json probeFlag(float v) { return std::isfinite(v) ? json(v != 0.0f) : json(nullptr); }
+
+// ---------------------------------------------------------------------------
+// first_hit_random_rays (stage firsthit)
+
+// Whether every sample up to the first hit keeps clear of the threshold.
+bool clearFirstHit(const probe::ProbeVolume& volume, const ProbeRay& ray, double step, double threshold) {
+    const int n = clearSampleCount(ray, step);
+    if (n < 0) return false;
+    for (int m = 0; m < n; ++m) {
+        const double v = probeField(volume, ray.origin + sampleT(ray, step, m) * ray.direction);
+        if (std::abs(v - threshold) < kValueMargin) return false;
+        if (v >= threshold) return true;
+    }
+    return true;
+}
+
+json runFirstHit(const std::string& root) {
+    CheckRandom rng(0x5EED0008u);
+    probe::ProbeVolume volume = randomVolume(rng, glm::ivec3(7, 6, 8), glm::dvec3(1.0, 0.8, 1.2), 2.0, -0.5);
+    volume.linearFilter = true;
+    const glm::dvec3 extent(volume.extent);
+    std::vector<ProbeRay> rays;
+    std::vector<double> steps, thresholds;
+    while (int(rays.size()) < kCases) {
+        // One ray in four starts inside the box (t_entry = 0); the others
+        // come from up to 2 units outside it. Steps of 0.15 to 0.7 units
+        // (the smallest spacing is 0.8); thresholds that some rays reach.
+        const bool inside = rays.size() % 4 == 3;
+        const glm::dvec3 through = rng.inBox(0.05 * extent, 0.95 * extent);
+        const double back = inside ? rng.range(0.0, 1.0) : glm::length(extent) + rng.range(0.1, 2.0);
+        const ProbeRay ray = boxRay(rng, extent, through, back);
+        const double step = f32(rng.range(0.15, 0.7));
+        const double threshold = f32(rng.range(0.7, 1.3));
+        if (!clearFirstHit(volume, ray, step, threshold)) continue;
+        rays.push_back(ray);
+        steps.push_back(step);
+        thresholds.push_back(threshold);
+    }
+    std::vector<glm::vec4> origins, directions;
+    for (const ProbeRay& r : rays) {
+        origins.push_back(texel(r.origin, r.tEntry));
+        directions.push_back(texel(r.direction, r.tExit));
+    }
+    GlslProbe probe(root, "probes/first_hit_probe.frag", kMarchConstants);
+    probe.setVolume(volume);
+    const probe::ProbeResults results =
+        probe.run(kCases, {origins, directions}, [&](const ShaderProgram& program, int i) {
+            program.set("u_step", float(steps[std::size_t(i)]));
+            program.set("u_threshold", float(thresholds[std::size_t(i)]));
+        });
+    json check = checkJson("first_hit_random_rays", "firsthit");
+    check["fixture"] = {{"volume", volumeJson(volume)}, {"interpolation", "hardware"}};
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+        json input = rayInput(rays[k], steps[k]);
+        input["threshold"] = thresholds[k];
+        const glm::vec4 r = results.first[k];
+        addCase(check, "first_hit", input, {{"hit", probeFlag(r.x)}, {"t", number(r.y)}, {"value", number(r.z)}});
+    }
+    check["not_implemented"] = results.notImplemented;
+    return check;
+}
+
+// ---------------------------------------------------------------------------
+// iso_hit_random_rays (stage iso)
+
+constexpr double kIsovalue = 0.5;
+
+// A ball-shaped field: 1 at `centre`, falling by 1/2 per `radius` away
+// from it, plus noise of +-0.02 per voxel, so its isovalue-0.5 surface is a
+// slightly bumpy sphere of about that radius (values higher inside).
+probe::ProbeVolume ballVolume(CheckRandom& rng, glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 centre,
+                              double radius) {
+    probe::ProbeVolume volume;
+    volume.dims = dims;
+    volume.extent = glm::vec3(glm::dvec3(dims) * spacing);
+    volume.linearFilter = true;
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) {
+                const glm::dvec3 p = (glm::dvec3(x, y, z) + 0.5) * spacing;
+                const double noise = rng.range(-0.02, 0.02);
+                volume.values.push_back(float(1.0 - 0.5 * glm::length(p - centre) / radius + noise));
+            }
+    return volume;
+}
+
+// Whether every sample up to the crossing, and every midpoint the
+// bisection evaluates (in exact arithmetic), keeps clear of the isovalue.
+bool clearIsoHit(const probe::ProbeVolume& volume, const ProbeRay& ray, double step, int refinements) {
+    const int n = clearSampleCount(ray, step);
+    if (n < 0) return false;
+    auto g = [&](double t) { return probeField(volume, ray.origin + t * ray.direction) - kIsovalue; };
+    for (int m = 0; m < n; ++m) {
+        const double now = g(sampleT(ray, step, m));
+        if (std::abs(now) < kValueMargin) return false;
+        if (now < 0.0) continue;
+        if (m == 0) return true;  // starts inside: no bisection
+        double lo = sampleT(ray, step, m - 1), hi = sampleT(ray, step, m);
+        for (int k = 0; k < refinements; ++k) {
+            const double mid = 0.5 * (lo + hi), v = g(mid);
+            if (std::abs(v) < 0.1 * kValueMargin) return false;
+            (v < 0.0 ? lo : hi) = mid;
+        }
+        return true;
+    }
+    return true;
+}
+
+json runIsoHit(const std::string& root) {
+    CheckRandom rng(0x5EED0009u);
+    const glm::ivec3 dims(12, 10, 11);
+    const glm::dvec3 spacing(0.9, 1.1, 1.0), extent = glm::dvec3(dims) * spacing;
+    const glm::dvec3 centre = f32(0.5 * extent + rng.inBox(glm::dvec3(-1.0), glm::dvec3(1.0)));
+    const double radius = f32(rng.range(3.0, 3.5));
+    const probe::ProbeVolume volume = ballVolume(rng, dims, spacing, centre, radius);
+    std::vector<ProbeRay> rays;
+    std::vector<double> steps;
+    std::vector<int> refinements;
+    while (int(rays.size()) < kCases) {
+        // Kinds: 0 from outside the box through any point of it (some
+        // miss the ball); 1, 2 from outside through the ball; 3 from a
+        // point near the centre, inside the ball (the first sample is a hit).
+        // Refinements: none for kind 0 (the first sample past the crossing),
+        // 4 to 6 otherwise.
+        const int kind = int(rays.size() % 4);
+        const glm::dvec3 through = kind == 0 ? rng.inBox(0.05 * extent, 0.95 * extent)
+                                             : centre + 0.8 * radius * rng.unitVector();
+        const double back = kind == 3 ? rng.range(0.0, 0.3) * radius : glm::length(extent) + rng.range(0.1, 2.0);
+        const ProbeRay ray = boxRay(rng, extent, kind == 3 ? centre + 0.2 * (through - centre) : through, back);
+        const double step = f32(rng.range(0.3, 0.8));
+        const int k = kind == 0 ? 0 : 4 + rng.index(3);
+        if (!clearIsoHit(volume, ray, step, k)) continue;
+        rays.push_back(ray);
+        steps.push_back(step);
+        refinements.push_back(k);
+    }
+    std::vector<glm::vec4> origins, directions;
+    for (const ProbeRay& r : rays) {
+        origins.push_back(texel(r.origin, r.tEntry));
+        directions.push_back(texel(r.direction, r.tExit));
+    }
+    GlslProbe probe(root, "probes/iso_hit_probe.frag", kMarchConstants);
+    probe.setVolume(volume);
+    const probe::ProbeResults results =
+        probe.run(kCases, {origins, directions}, [&](const ShaderProgram& program, int i) {
+            program.set("u_step", float(steps[std::size_t(i)]));
+            program.set("u_isovalue", float(kIsovalue));
+            program.set("u_refinement_steps", refinements[std::size_t(i)]);
+        });
+    json check = checkJson("iso_hit_random_rays", "iso");
+    check["fixture"] = {{"volume", volumeJson(volume)}, {"interpolation", "hardware"}};
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+        json input = rayInput(rays[k], steps[k]);
+        input["isovalue"] = kIsovalue;
+        input["refinement_steps"] = refinements[k];
+        const glm::vec4 r = results.first[k];
+        addCase(check, "iso_hit", input, {{"hit", probeFlag(r.x)}, {"t", number(r.y)}});
+    }
+    check["not_implemented"] = results.notImplemented;
+    return check;
+}
+
+// ---------------------------------------------------------------------------
 // Comparison
 
 double notANumber() { return std::numeric_limits<double>::quiet_NaN(); }
@@ -813,6 +1057,54 @@ CaseVerdict comparePlaneBox(const std::string&, const json& input, const json& e
     return comparePolygons(input, e, a);
 }
 
+// The hit flags must agree; where neither hits, t and value are not part
+// of the contract. *bothHit tells whether t must be compared.
+CaseVerdict compareHitFlags(const json& e, const json& a, bool* bothHit) {
+    *bothHit = false;
+    if (!a.is_object() || !a.contains("hit") || !a["hit"].is_boolean()) return failure("no hit flag");
+    if (a["hit"] != e["hit"]) return failure(e["hit"] == true ? "missed" : "a hit where there is none");
+    *bothHit = e["hit"] == true;
+    return {};
+}
+
+CaseVerdict compareFirstHit(const std::string&, const json&, const json& e, const json& a) {
+    bool bothHit = false;
+    CaseVerdict flags = compareHitFlags(e, a, &bothHit);
+    if (!bothHit) return flags;
+    // The same samples give the same hit, so t differs only by rounding:
+    // t_entry + (m + 1/2) step in float is within a few 1e-6 of t, and
+    // summing t += step over up to 200 samples (t < 40) within 4e-4. The
+    // tolerance 1e-4 (1 + |t|) allows that and stays at most 4e-3 (t < 40),
+    // 20 times below half the smallest step (0.15 / 2): a hit half a step
+    // off (no + 1/2), a step off or a sample off fails. The value is read
+    // at the same position, to ~1e-5; values span 2: 1e-4 (1 + |value|).
+    const CaseVerdict t = compareNumbers(e["t"], a.value("t", json()), 1e-4, 1e-4);
+    if (!t.pass) return {false, t.delta, t.note.empty() ? "t" : "t: " + t.note};
+    const CaseVerdict value = compareNumbers(e["value"], a.value("value", json()), 1e-4, 1e-4);
+    if (!value.pass) return {false, value.delta, value.note.empty() ? "value" : "value: " + value.note};
+    return t;
+}
+
+CaseVerdict compareIsoHit(const std::string&, const json& input, const json& e, const json& a) {
+    bool bothHit = false;
+    CaseVerdict flags = compareHitFlags(e, a, &bothHit);
+    if (!bothHit) return flags;
+    // After k bisection steps the answer is the middle of an interval of
+    // step / 2^k around the crossing. With one step fewer it is the middle
+    // of the interval twice as long that holds it: exactly step / 2^(k+1)
+    // away; with one more, step / 2^(k+2) away; with none (t_m), at least
+    // step / 2^(k+1). The tolerance step / 2^(k+3) is a quarter of the
+    // first and half of the second, and at k = 6 and the smallest step
+    // (0.3) it is 6e-4, 15 times the float rounding of t (t < 40: 4e-5).
+    // Without refinement (k = 0) it is step / 8: t_m, not t_(m-1) or the
+    // middle between them.
+    const double step = input.at("step").get<double>();
+    const int k = input.at("refinement_steps").get<int>();
+    const CaseVerdict t = compareNumbers(e["t"], a.value("t", json()), std::ldexp(step, -(k + 3)), 0.0);
+    if (!t.pass) return {false, t.delta, t.note.empty() ? "t" : "t: " + t.note};
+    return t;
+}
+
 // ---------------------------------------------------------------------------
 // The list of checks
 
@@ -851,6 +1143,14 @@ const std::vector<CheckDefinition>& definitions() {
           "planeBoxPolygon() on random planes and boxes: through corners and edges, parallel to and containing "
           "faces, missing the box; vertices compared as a counter-clockwise cycle"},
          runPlaneBox, comparePlaneBox},
+        {{"first_hit_random_rays", "firsthit",
+          "first_hit() on random rays through a random 7x6x8 volume, with random steps and thresholds: rays from "
+          "outside the box and from inside it, hits and misses; t within 1e-4 (1 + |t|), far below half a step"},
+         runFirstHit, compareFirstHit},
+        {{"iso_hit_random_rays", "iso",
+          "iso_hit() on random rays through a bumpy ball, with random steps and 0 or 4 to 6 bisection steps: "
+          "misses, hits from outside, rays starting inside; t within step / 2^(k+3) for k steps"},
+         runIsoHit, compareIsoHit},
     };
     return list;
 }

@@ -11,11 +11,14 @@
 # exit; the input that caused it is saved in VOXLAB_FUZZ_ARTIFACTS (default:
 # artifacts/ beside the fuzzer) and replayed by `FUZZER ARTIFACT`.
 #
+# The dictionary tests/fuzz/dict/NAME.dict (field names, keywords, escapes)
+# is passed when it exists.
+#
 # Limits: 10 s per input (a hang), 512 MiB in one allocation and 2 GiB
 # resident (a size taken from the input and trusted), inputs up to 8 KiB.
 set -euo pipefail
 if [ $# -lt 3 ]; then
-  sed -n '2,16p' "$0" >&2
+  sed -n '2,19p' "$0" >&2
   exit 2
 fi
 fuzzer=$1 seeds=$2 runs=$3
@@ -32,8 +35,12 @@ else
 fi
 [ -d "$seeds" ] || { echo "$name: no seed corpus at $seeds" >&2; exit 2; }
 
+dict=()
+dictionary="$(dirname "${BASH_SOURCE[0]}")/dict/${name#fuzz_}.dict"
+[ -f "$dictionary" ] && dict=(-dict="$dictionary")
+
 status=0
-"$fuzzer" -runs="$runs" -max_len=8192 -timeout=10 -malloc_limit_mb=512 -rss_limit_mb=2048 \
+"$fuzzer" "${dict[@]}" -runs="$runs" -max_len=8192 -timeout=10 -malloc_limit_mb=512 -rss_limit_mb=2048 \
   -print_final_stats=1 -artifact_prefix="$artifacts/$name-" "$@" "$work" "$seeds" || status=$?
 if [ "$status" -ne 0 ]; then
   echo "$name: FINDING (exit $status); the input is in $artifacts/ (replay: $fuzzer FILE)" >&2

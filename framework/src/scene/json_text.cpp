@@ -2,6 +2,7 @@
 #include "json_text.h"
 
 #include <cerrno>
+#include <cstdio>
 #include <charconv>
 #include <cstdlib>
 #include <cstring>
@@ -45,6 +46,28 @@ std::string readCappedText(std::istream& in, const std::string& path) {
     if (text.size() > kMaxTextInputBytes) throw Error(tooLarge);
     if (in.bad()) throw Error(path + ": cannot read");
     return text;
+}
+
+std::string escapeControls(const std::string& msg) {
+    std::string out;
+    out.reserve(msg.size());
+    for (const char c : msg) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u >= 0x20 && u != 0x7f) {
+            out += c;
+        } else if (c == '\n') {
+            out += "\\n";
+        } else if (c == '\r') {
+            out += "\\r";
+        } else if (c == '\t') {
+            out += "\\t";
+        } else {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\u%04x", unsigned(u));
+            out += buf;
+        }
+    }
+    return out;
 }
 
 nlohmann::json readJsonFile(const std::string& path) {

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "voxlab/error.h"
+
 namespace voxlab::json_text {
 
 // A float written as the shortest decimal that reads back as the same float
@@ -28,6 +30,22 @@ constexpr std::size_t kMaxTextInputBytes = std::size_t(16) << 20;
 // it: "<path>: more than 16 MiB (the limit for a text input)". A regular
 // file's size is checked first, so a huge one is refused without reading.
 std::string readCappedText(std::istream& in, const std::string& path);
+
+// The message with each control character (U+0000..U+001F, U+007F) written
+// as its JSON escape (\n, \t, \u001b): keys and strings from a document are
+// echoed as they are written in it, and the message stays on one line.
+std::string escapeControls(const std::string& msg);
+
+// Runs `parse`; a voxlab::Error it throws is thrown again through
+// escapeControls (the public fromJson functions wrap their parsers in it).
+template <class F>
+auto escapedErrors(F parse) -> decltype(parse()) {
+    try {
+        return parse();
+    } catch (const Error& e) {
+        throw Error(escapeControls(e.what()));
+    }
+}
 
 // Parses a JSON file; a missing file, one over kMaxTextInputBytes or a
 // syntax error becomes one voxlab::Error line that starts with the path.

@@ -270,7 +270,7 @@ using json_text::shortFloat;
 }  // namespace
 
 Scene Scene::fromJson(const json& j, const std::string& where, const std::string& baseDir) {
-    return Parser(where, baseDir).parse(j);
+    return json_text::escapedErrors([&] { return Parser(where, baseDir).parse(j); });
 }
 
 Scene Scene::load(const std::string& path) {

@@ -153,8 +153,9 @@ TransferFunction TransferFunction::fromJson(const json& j, const std::string& wh
     return fromJson(j, where, "");
 }
 
-TransferFunction TransferFunction::fromJson(const json& j, const std::string& where,
-                                            const std::string& key) {
+namespace {
+
+TransferFunction parseFunction(const json& j, const std::string& where, const std::string& key) {
     // Labels: a file's points are "points[i]"; under a scene key they are
     // "key[i]" (array form) or "key.points[i]" (object form).
     const std::string pre = prefix(where);
@@ -184,6 +185,13 @@ TransferFunction TransferFunction::fromJson(const json& j, const std::string& wh
     for (size_t i = 0; i < arr->size(); ++i)
         points.push_back(parsePoint((*arr)[i], pre + label + "[" + std::to_string(i) + "]"));
     return TransferFunction(std::move(points));
+}
+
+}  // namespace
+
+TransferFunction TransferFunction::fromJson(const json& j, const std::string& where,
+                                            const std::string& key) {
+    return json_text::escapedErrors([&] { return parseFunction(j, where, key); });
 }
 
 TransferFunction TransferFunction::load(const std::string& path) {

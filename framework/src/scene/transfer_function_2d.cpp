@@ -121,7 +121,9 @@ glm::vec4 TransferFunction2D::evaluate(double f, double g) const {
     return glm::vec4(glm::vec3(colour / weight), float(1.0 - keep));
 }
 
-TransferFunction2D TransferFunction2D::fromJson(const json& j, const std::string& where, const std::string& key) {
+namespace {
+
+TransferFunction2D parseFunction(const json& j, const std::string& where, const std::string& key) {
     const std::string at = (where.empty() ? "" : where + ": ") + (key.empty() ? "" : key);
     const std::string dot = key.empty() ? "" : ".";
     if (!j.is_object() || !j.contains("widgets"))
@@ -137,6 +139,12 @@ TransferFunction2D TransferFunction2D::fromJson(const json& j, const std::string
     for (std::size_t i = 0; i < list.size(); ++i)
         widgets.push_back(parseWidget(list[i], at + dot + "widgets[" + std::to_string(i) + "]"));
     return TransferFunction2D(std::move(widgets));
+}
+
+}  // namespace
+
+TransferFunction2D TransferFunction2D::fromJson(const json& j, const std::string& where, const std::string& key) {
+    return json_text::escapedErrors([&] { return parseFunction(j, where, key); });
 }
 
 TransferFunction2D TransferFunction2D::load(const std::string& path) {

@@ -1,0 +1,71 @@
+# Included by tests/CMakeLists.txt: builds the libFuzzer targets of
+# tests/fuzz/ in build/fuzz (a clang sub-build, see tests/fuzz/CMakeLists.txt)
+# and registers their short runs with CTest, label `fuzz`:
+#   fuzz_NAME         NAME's seeds plus VOXLAB_FUZZ_CTEST_RUNS executions in all
+#                     (fixed seed, so the same inputs every time); fails on a finding;
+#   fuzz_NAME_canary  the harness's self-test: a planted exception must be
+#                     reported as a finding.
+# Nothing happens when clang++ cannot link a libFuzzer program (or Python 3 is
+# missing): the g++ build and its tests are unchanged. -DVOXLAB_FUZZ=OFF turns
+# it off by hand. Long runs: tools/fuzz.sh.
+option(VOXLAB_FUZZ "Build and test the libFuzzer targets (tests/fuzz/) when clang++ is installed" ON)
+set(VOXLAB_FUZZ_CTEST_RUNS 5000 CACHE STRING "Executions per fuzz target in its CTest run")
+if(NOT VOXLAB_FUZZ)
+  return()
+endif()
+
+find_program(VOXLAB_FUZZ_CXX NAMES clang++-14 clang++ DOC "clang++ that builds the fuzz targets")
+find_package(Python3 COMPONENTS Interpreter)
+if(NOT VOXLAB_FUZZ_CXX OR NOT Python3_Interpreter_FOUND)
+  message(STATUS "Fuzz targets: not built (need clang++ and python3)")
+  return()
+endif()
+
+# Can this clang link a fuzzer with both sanitizers (libclang-rt-dev)?
+# Asked once per compiler.
+if(NOT VOXLAB_FUZZ_PROBED_CXX STREQUAL VOXLAB_FUZZ_CXX)
+  set(probe ${CMAKE_CURRENT_BINARY_DIR}/fuzz_probe)
+  file(WRITE ${probe}/probe.cpp
+       "#include <cstddef>\n#include <cstdint>\n"
+       "extern \"C\" int LLVMFuzzerTestOneInput(const std::uint8_t*, std::size_t) { return 0; }\n")
+  execute_process(
+    COMMAND ${VOXLAB_FUZZ_CXX} -fsanitize=fuzzer,address,undefined probe.cpp -o probe
+    WORKING_DIRECTORY ${probe} RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+  set(ok OFF)
+  if(rc EQUAL 0)
+    set(ok ON)
+  endif()
+  set(VOXLAB_FUZZ_USABLE ${ok} CACHE INTERNAL "clang++ links libFuzzer programs")
+  set(VOXLAB_FUZZ_PROBED_CXX ${VOXLAB_FUZZ_CXX} CACHE INTERNAL "the clang++ probed")
+endif()
+if(NOT VOXLAB_FUZZ_USABLE)
+  message(STATUS "Fuzz targets: not built (${VOXLAB_FUZZ_CXX} cannot link -fsanitize=fuzzer)")
+  return()
+endif()
+message(STATUS "Fuzz targets: built with ${VOXLAB_FUZZ_CXX} in ${PROJECT_BINARY_DIR}/fuzz")
+
+include(${CMAKE_CURRENT_LIST_DIR}/targets.cmake)
+include(ExternalProject)
+set(fuzz_bin ${PROJECT_BINARY_DIR}/fuzz)
+ExternalProject_Add(voxlab_fuzzers
+  SOURCE_DIR ${CMAKE_CURRENT_LIST_DIR}
+  BINARY_DIR ${fuzz_bin}
+  PREFIX ${PROJECT_BINARY_DIR}/fuzz-prefix
+  CMAKE_ARGS -DCMAKE_CXX_COMPILER=${VOXLAB_FUZZ_CXX} -DCMAKE_BUILD_TYPE=RelWithDebInfo
+             -DPython3_EXECUTABLE=${Python3_EXECUTABLE}
+  BUILD_ALWAYS ON
+  INSTALL_COMMAND "")
+
+set(runner ${CMAKE_CURRENT_LIST_DIR}/run_fuzzer.sh)
+foreach(name ${VOXLAB_FUZZ_TARGETS})
+  add_test(NAME fuzz_${name}
+    COMMAND ${runner} ${fuzz_bin}/fuzz_${name} ${fuzz_bin}/corpus/${name} ${VOXLAB_FUZZ_CTEST_RUNS}
+            -seed=1 -max_total_time=120)
+  set_tests_properties(fuzz_${name} PROPERTIES LABELS fuzz TIMEOUT 300)
+
+  add_test(NAME fuzz_${name}_canary
+    COMMAND ${runner} ${fuzz_bin}/fuzz_${name} ${fuzz_bin}/corpus/${name} 100 -seed=1)
+  set_tests_properties(fuzz_${name}_canary PROPERTIES LABELS fuzz TIMEOUT 60
+    ENVIRONMENT "VOXLAB_FUZZ_CANARY=1;VOXLAB_FUZZ_ARTIFACTS=${fuzz_bin}/canary_artifacts"
+    PASS_REGULAR_EXPRESSION "voxlab fuzz finding: exception other than voxlab::Error")
+endforeach()

@@ -1,0 +1,29 @@
+# The libFuzzer targets, one per parser (tests/fuzz/fuzz_NAME.cpp), and the
+# framework sources they compile. Included by tests/fuzz/CMakeLists.txt
+# (the clang sub-build) and tests/CMakeLists.txt (their CTest entries).
+set(VOXLAB_FUZZ_TARGETS
+  nrrd            # NRRD, attached data
+  nrrd_detached   # NRRD, detached header + data file
+  fld             # AVS field
+  dat             # .dat + .raw
+  scene           # scene JSON
+  tf              # 1D transfer function
+  tf2d            # 2D transfer function
+  viewer_script)  # viewer scripts
+
+# The parsers and what they call; nothing that needs OpenGL.
+set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
+  src/volume/volume.cpp
+  src/volume/volume_io_util.cpp
+  src/volume/nrrd_loader.cpp
+  src/volume/fld_loader.cpp
+  src/volume/dat_raw_loader.cpp
+  src/volume/load_volume.cpp
+  src/volume/phantoms.cpp
+  src/scene/scene.cpp
+  src/scene/json_text.cpp
+  src/scene/data_path.cpp
+  src/scene/transfer_function.cpp
+  src/scene/transfer_function_2d.cpp
+  src/scene/viewer_script.cpp
+  src/render/camera.cpp)

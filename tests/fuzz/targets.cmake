@@ -26,4 +26,5 @@ set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
   src/scene/transfer_function.cpp
   src/scene/transfer_function_2d.cpp
   src/scene/viewer_script.cpp
-  src/render/camera.cpp)
+  src/render/camera.cpp
+  src/io/atomic_file.cpp)

@@ -31,7 +31,8 @@ TEST_F(GlTest, CompileErrorNamesTheStudentFileAndLine) {
                                              "    return m;\n"
                                              "}\n");
     RenderEngine student(root.string());
-    student.setVolume(makePhantom("phantom:sphere:8"));
+    const Volume sphere = makePhantom("phantom:sphere:8");
+    student.setVolume(sphere);
     Scene scene;
     scene.renderer = "mip";
     scene.width = scene.height = 8;

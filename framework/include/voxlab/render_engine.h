@@ -58,7 +58,10 @@ public:
 
     // Uploads the volume as a 3D texture in its native precision (R8, R16,
     // R32F; int16 is shifted by +32768 into R16 so that no value is lost).
+    // The engine keeps a pointer to `volume`, which must outlive its renders:
+    // a temporary is refused at compile time.
     void setVolume(const Volume& volume);
+    void setVolume(Volume&&) = delete;
     const Volume* volume() const { return volume_; }
 
     // Renders `scene` (its dataset is ignored: the volume set above is used)

@@ -2,13 +2,42 @@
 #include "voxlab/gl_context.h"
 
 #include <cstdlib>
+#include <cstring>
+
+#ifdef VOXLAB_SANITIZED
+#include <dlfcn.h>
+#include <link.h>
+#endif
 
 #include "voxlab/error.h"
 #include "voxlab_gl.h"
 
 namespace voxlab {
 
+namespace {
+
+// Sanitizer builds only (VOXLAB_SANITIZE=ON). Mesa unloads its DRI driver
+// (swrast_dri.so) when an EGL display or GLX connection closes; the few
+// hundred bytes the driver still holds then become unreachable and
+// LeakSanitizer reports them against "<unknown module>", which no
+// suppression can name. Marking every loaded DRI driver RTLD_NODELETE keeps
+// it mapped until exit, and what it holds reachable from its globals.
+void keepDriDriversLoaded() {
+#ifdef VOXLAB_SANITIZED
+    dl_iterate_phdr(
+        [](dl_phdr_info* info, std::size_t, void*) {
+            if (info->dlpi_name && std::strstr(info->dlpi_name, "_dri.so"))
+                dlopen(info->dlpi_name, RTLD_LAZY | RTLD_NOLOAD | RTLD_NODELETE);
+            return 0;
+        },
+        nullptr);
+#endif
+}
+
+}  // namespace
+
 void GlContext::loadFunctions(const char* kind) {
+    keepDriDriversLoaded();
     kind_ = kind;
     // voxlabLoadGL accepts any get-proc-address function; each backend
     // hands us its own through this trampoline.

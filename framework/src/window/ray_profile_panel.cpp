@@ -138,8 +138,9 @@ DepthView updateDepthView(const RayProfile& profile, bool hovered, bool active, 
                           double minimumFraction) {
     ImGuiStorage* storage = ImGui::GetStateStorage();
     const ImGuiID loId = ImGui::GetID("view lo"), hiId = ImGui::GetID("view hi"), keyId = ImGui::GetID("view key");
-    const int key = int(ImGui::GetID(profile.renderer.c_str())) ^ (profile.px * 73856093) ^ (profile.py * 19349663) ^
-                    int(profile.samples.size());
+    // A hash: unsigned, so that it wraps instead of overflowing (UBSan).
+    const int key = int(unsigned(ImGui::GetID(profile.renderer.c_str())) ^ (unsigned(profile.px) * 73856093u) ^
+                        (unsigned(profile.py) * 19349663u) ^ unsigned(profile.samples.size()));
     DepthView v;
     if (storage->GetInt(keyId, 0) == key) v.lo = storage->GetFloat(loId, 0.0f), v.hi = storage->GetFloat(hiId, 1.0f);
     const ImGuiIO& io = ImGui::GetIO();

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <climits>
 #include <cstring>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -280,6 +281,9 @@ std::uint64_t checkedVoxelCount(const std::string& path, const std::string& what
     };
     std::uint64_t count = 1;
     for (long long n : {nx, ny, nz}) {
+        // Each size becomes an int (glm::ivec3): 2^31 itself would wrap to a
+        // negative size after the data was read.
+        if (n > std::numeric_limits<int>::max()) tooMany();
         if (static_cast<std::uint64_t>(n) > kMaxVoxels) tooMany();
         count *= static_cast<std::uint64_t>(n);  // both factors <= 2^31: no overflow
         if (count > kMaxVoxels) tooMany();

@@ -64,11 +64,20 @@ std::string fingerprint(const fs::path& root) {
 // The reference's expected outputs are rendered once for the whole file.
 class Grader : public ::testing::Test {
 public:
+    // A failure here must fail every test: gtest would report the tests as
+    // skipped, and CTest would count a skip as no failure.
     static void SetUpTestSuite() {
         expected_ = scratch("expected");
         GraderOptions o = options();
         o.shipped = false;
-        renderExpectedOutputs(o);
+        try {
+            renderExpectedOutputs(o);
+        } catch (const std::exception& e) {
+            setUpError_ = e.what();
+        }
+    }
+    void SetUp() override {
+        if (!setUpError_.empty()) FAIL() << "rendering the expected outputs failed: " << setUpError_;
     }
     // Everything the file wrote goes with it (reports of hundreds of images).
     static void TearDownTestSuite() { fs::remove_all(scratchPath("").parent_path()); }
@@ -94,6 +103,7 @@ public:
 
 private:
     static inline fs::path expected_;
+    static inline std::string setUpError_;
 };
 
 TEST_F(Grader, TheReferenceScoresFullMarks) {

@@ -62,11 +62,20 @@ std::string hostileCpp(const std::string& attack, const std::string& includes = 
 
 class HostileSubmissions : public ::testing::Test {
 public:
+    // A failure here must fail every test: gtest would report the tests as
+    // skipped, and CTest would count a skip as no failure.
     static void SetUpTestSuite() {
         expected_ = scratch("expected");
         GraderOptions o = options();
         o.shipped = false;
-        renderExpectedOutputs(o);
+        try {
+            renderExpectedOutputs(o);
+        } catch (const std::exception& e) {
+            setUpError_ = e.what();
+        }
+    }
+    void SetUp() override {
+        if (!setUpError_.empty()) FAIL() << "rendering the expected outputs failed: " << setUpError_;
     }
     static void TearDownTestSuite() { if (!std::getenv("VOXLAB_KEEP")) fs::remove_all(scratchRoot()); }
     static GraderOptions options() {
@@ -115,6 +124,7 @@ public:
 
 private:
     static inline fs::path expected_;
+    static inline std::string setUpError_;
 };
 
 // --- The graded stage comes only from the submission. ---

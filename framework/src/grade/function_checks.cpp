@@ -699,6 +699,21 @@ struct ProbeRay {
     double tEntry = 0.0, tExit = 0.0;
 };
 
+// Runs a ray-marching probe (first hit, iso) on `rays` through `volume`:
+// each case gets its ray's origin and t_entry, direction and t_exit.
+probe::ProbeResults marchRays(const std::string& root, const std::string& fragment,
+                              const probe::ProbeVolume& volume, const std::vector<ProbeRay>& rays,
+                              const std::function<void(const ShaderProgram&, int)>& perCase) {
+    std::vector<glm::vec4> origins, directions;
+    for (const ProbeRay& r : rays) {
+        origins.push_back(texel(r.origin, r.tEntry));
+        directions.push_back(texel(r.direction, r.tExit));
+    }
+    GlslProbe probe(root, fragment, kMarchConstants);
+    probe.setVolume(volume);
+    return probe.run(kCases, {origins, directions}, perCase);
+}
+
 // The probe volume's trilinear field in double, clamped to the border
 // voxels: only to keep the inputs clear of jumps (see above).
 double probeField(const probe::ProbeVolume& v, glm::dvec3 p) {
@@ -789,15 +804,8 @@ json runFirstHit(const std::string& root) {
         steps.push_back(step);
         thresholds.push_back(threshold);
     }
-    std::vector<glm::vec4> origins, directions;
-    for (const ProbeRay& r : rays) {
-        origins.push_back(texel(r.origin, r.tEntry));
-        directions.push_back(texel(r.direction, r.tExit));
-    }
-    GlslProbe probe(root, "probes/first_hit_probe.frag", kMarchConstants);
-    probe.setVolume(volume);
     const probe::ProbeResults results =
-        probe.run(kCases, {origins, directions}, [&](const ShaderProgram& program, int i) {
+        marchRays(root, "probes/first_hit_probe.frag", volume, rays, [&](const ShaderProgram& program, int i) {
             program.set("u_step", float(steps[std::size_t(i)]));
             program.set("u_threshold", float(thresholds[std::size_t(i)]));
         });
@@ -887,15 +895,8 @@ json runIsoHit(const std::string& root) {
         steps.push_back(step);
         refinements.push_back(k);
     }
-    std::vector<glm::vec4> origins, directions;
-    for (const ProbeRay& r : rays) {
-        origins.push_back(texel(r.origin, r.tEntry));
-        directions.push_back(texel(r.direction, r.tExit));
-    }
-    GlslProbe probe(root, "probes/iso_hit_probe.frag", kMarchConstants);
-    probe.setVolume(volume);
     const probe::ProbeResults results =
-        probe.run(kCases, {origins, directions}, [&](const ShaderProgram& program, int i) {
+        marchRays(root, "probes/iso_hit_probe.frag", volume, rays, [&](const ShaderProgram& program, int i) {
             program.set("u_step", float(steps[std::size_t(i)]));
             program.set("u_isovalue", float(kIsovalue));
             program.set("u_refinement_steps", refinements[std::size_t(i)]);

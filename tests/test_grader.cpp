@@ -15,6 +15,7 @@
 #include "voxlab/grader.h"
 #include "voxlab/grading.h"
 #include "voxlab/scene.h"
+#include "support/expected_outputs.h"
 #include "support/run_command.h"
 
 namespace voxlab::testing {
@@ -64,17 +65,9 @@ std::string fingerprint(const fs::path& root) {
 // The reference's expected outputs are rendered once for the whole file.
 class Grader : public ::testing::Test {
 public:
-    // A failure here must fail every test: gtest would report the tests as
-    // skipped, and CTest would count a skip as no failure.
     static void SetUpTestSuite() {
         expected_ = scratch("expected");
-        GraderOptions o = options();
-        o.shipped = false;
-        try {
-            renderExpectedOutputs(o);
-        } catch (const std::exception& e) {
-            setUpError_ = e.what();
-        }
+        setUpError_ = renderExpectedOrWhy(options());
     }
     void SetUp() override {
         if (!setUpError_.empty()) FAIL() << "rendering the expected outputs failed: " << setUpError_;

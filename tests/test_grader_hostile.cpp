@@ -19,6 +19,7 @@
 #include "voxlab/child_process.h"
 #include "voxlab/grader.h"
 #include "voxlab/image.h"
+#include "support/expected_outputs.h"
 #include "support/run_command.h"
 #include "support/sandbox_probes.h"
 
@@ -62,17 +63,9 @@ std::string hostileCpp(const std::string& attack, const std::string& includes = 
 
 class HostileSubmissions : public ::testing::Test {
 public:
-    // A failure here must fail every test: gtest would report the tests as
-    // skipped, and CTest would count a skip as no failure.
     static void SetUpTestSuite() {
         expected_ = scratch("expected");
-        GraderOptions o = options();
-        o.shipped = false;
-        try {
-            renderExpectedOutputs(o);
-        } catch (const std::exception& e) {
-            setUpError_ = e.what();
-        }
+        setUpError_ = renderExpectedOrWhy(options());
     }
     void SetUp() override {
         if (!setUpError_.empty()) FAIL() << "rendering the expected outputs failed: " << setUpError_;

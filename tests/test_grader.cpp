@@ -290,16 +290,19 @@ TEST(GradingManifest, BadManifestsGiveOneLineErrors) {
     EXPECT_THROW(loadStageManifest(root.string(), "nosuchstage"), Error);
 }
 
-TEST(GradingCredit, FallsLinearlyToZeroAtThreeTimesTheThreshold) {
+TEST(GradingCredit, AFailedItemEarnsAtMostHalfFallingToZeroAtThreeTimesTheThreshold) {
     EXPECT_EQ(creditForRatio(0.0), 1.0);
     EXPECT_EQ(creditForRatio(1.0), 1.0);
-    EXPECT_DOUBLE_EQ(creditForRatio(2.0), 0.5);
-    EXPECT_DOUBLE_EQ(creditForRatio(2.5), 0.25);
+    EXPECT_NEAR(creditForRatio(1.0 + 1e-9), 0.5, 1e-9);
+    EXPECT_DOUBLE_EQ(creditForRatio(2.0), 0.25);
+    EXPECT_DOUBLE_EQ(creditForRatio(2.5), 0.125);
     EXPECT_EQ(creditForRatio(3.0), 0.0);
     EXPECT_EQ(creditForRatio(1e9), 0.0);
-    // Function checks: full credit only with no failing case, none from 10%.
+    // Function checks: full credit only with no failing case, at most half
+    // with one, none from 10%.
     EXPECT_EQ(creditForFailedCases(0.0), 1.0);
-    EXPECT_DOUBLE_EQ(creditForFailedCases(0.05), 0.5);
+    EXPECT_NEAR(creditForFailedCases(1e-9), 0.5, 1e-6);
+    EXPECT_DOUBLE_EQ(creditForFailedCases(0.05), 0.25);
     EXPECT_EQ(creditForFailedCases(0.1), 0.0);
     EXPECT_EQ(creditForFailedCases(0.8), 0.0);
     // The worst metric decides; SSIM counts by 1 - SSIM.

@@ -31,16 +31,59 @@ using nlohmann::json;
 
 const fs::path kSource = VOXLAB_SOURCE_DIR;
 
+GraderOptions gradingOptions(const fs::path& root);
+
+// A mutant (a bug) or a correct alternative (about: how the student wrote it).
 struct Mutant {
-    std::string stage, name, file, find, replace, bug;
+    std::string stage, name, file, find, replace, bug, function, hint;
+    bool gross = false;
 };
 
-std::vector<Mutant> loadMutants() {
+std::vector<Mutant> loadList(const char* key) {
     const json j = json::parse(readFile(kSource / "tests/mutants/mutants.json"));
     std::vector<Mutant> mutants;
-    for (const json& m : j.at("mutants"))
-        mutants.push_back({m.at("stage"), m.at("name"), m.at("file"), m.at("find"), m.at("replace"), m.at("bug")});
+    for (const json& m : j.value(key, json::array()))
+        mutants.push_back({m.at("stage"), m.at("name"), m.at("file"), m.at("find"), m.at("replace"),
+                           m.value("bug", m.value("about", "")), m.value("function", ""), m.value("hint", ""),
+                           m.value("gross", false)});
     return mutants;
+}
+
+std::vector<Mutant> loadMutants() { return loadList("mutants"); }
+std::vector<Mutant> loadAlternatives() { return loadList("alternatives"); }
+
+// Each mutant or alternative applied to a copy of its stage's folder, all
+// graded in one grading run.
+std::vector<json> gradeVariants(const std::vector<Mutant>& variants, const fs::path& root) {
+    std::vector<Submission> submissions;
+    for (const Mutant& m : variants) {
+        const fs::path folder = root / "submissions" / m.name;
+        // Only the stage's folder: grading takes every other stage from the reference.
+        fs::create_directories(folder);
+        fs::copy(kSource / "reference" / m.stage, folder / m.stage, fs::copy_options::recursive);
+        std::string text = readFile(folder / m.file);
+        const std::size_t at = text.find(m.find);
+        if (at == std::string::npos) throw std::runtime_error(m.name + ": the find text is not in " + m.file);
+        text.replace(at, m.find.size(), m.replace);
+        std::ofstream(folder / m.file) << text;
+        submissions.push_back({m.name, folder.string(), (root / "reports" / m.name).string(), {m.stage}});
+    }
+    return gradeSubmissions(submissions, gradingOptions(root));
+}
+
+// Whether the stage's manifest has a hint for this signature.
+bool hintFor(const std::string& stage, const std::vector<std::string>& failed) {
+    return !hintsFor(loadStageManifest((kSource / "reference").string(), stage), failed).empty();
+}
+
+// The names of a stage's items that did not pass: the mutant's signature.
+std::vector<std::string> failedItems(const json& stage) {
+    std::vector<std::string> names;
+    for (const char* kind : {"scenes", "checks"})
+        for (const json& item : stage.value(kind, json::array()))
+            if (item.value("status", "") != "passed") names.push_back(item.value("name", ""));
+    std::sort(names.begin(), names.end());
+    return names;
 }
 
 fs::path scratch(const std::string& name) {
@@ -84,38 +127,55 @@ TEST(MutantSuite, EveryGradedStageHasAtLeastThreeMutantsThatApplyCleanly) {
     }
 }
 
-// Every mutant, graded in its own stage in one grading run.
+// Every mutant, graded in its own stage in one grading run: it fails its
+// stage and costs at least 2 of 10 points; a gross one (the stage broken
+// beyond use) keeps at most 2 of 10. Each mutant's signature (the items it
+// fails) is written to VOXLAB_MUTANT_SIGNATURES when that is set, for
+// tools/mutant_hints.py; a hint the manifests hold for the signature must
+// reach the report.
 TEST(MutantSuite, TheGraderFailsEveryMutant) {
     const std::vector<Mutant> mutants = loadMutants();
     const fs::path root = scratch("suite");
-    std::vector<Submission> submissions;
-    for (const Mutant& m : mutants) {
-        const fs::path folder = root / "submissions" / m.name;
-        // Only the stage's folder: grading takes every other stage from the reference.
-        fs::create_directories(folder);
-        fs::copy(kSource / "reference" / m.stage, folder / m.stage, fs::copy_options::recursive);
-        std::string text = readFile(folder / m.file);
-        const std::size_t at = text.find(m.find);
-        ASSERT_NE(at, std::string::npos) << m.name;
-        text.replace(at, m.find.size(), m.replace);
-        std::ofstream(folder / m.file) << text;
-        submissions.push_back({m.name, folder.string(), (root / "reports" / m.name).string(), {m.stage}});
-    }
-    const GraderOptions o = gradingOptions(root);
-    const std::vector<json> reports = gradeSubmissions(submissions, o);
+    const std::vector<json> reports = gradeVariants(mutants, root);
     ASSERT_EQ(reports.size(), mutants.size());
+    json signatures = json::array();
     for (std::size_t i = 0; i < mutants.size(); ++i) {
+        const Mutant& m = mutants[i];
         const json& stage = reports[i]["stages"].at(0);
-        EXPECT_EQ(stage["stage"], mutants[i].stage);
-        EXPECT_NE(stage["status"], "passed") << mutants[i].name << " (" << mutants[i].bug << ") passed "
-                                             << mutants[i].stage;
-        EXPECT_LT(stage["score"].get<double>(), stage["max_score"].get<double>()) << mutants[i].name;
+        EXPECT_EQ(stage["stage"], m.stage);
+        const double score = stage["score"].get<double>(), max = stage["max_score"].get<double>();
+        EXPECT_NE(stage["status"], "passed") << m.name << " (" << m.bug << ") passed " << m.stage;
         // A mutant is a bug, not a broken build.
-        EXPECT_TRUE(stage["status"] == "failed") << mutants[i].name << ": " << stage["status"] << ": "
-                                                 << stage["message"];
-        std::printf("%-14s %-36s %-8s %5.2f/%g  %s\n", mutants[i].stage.c_str(), mutants[i].name.c_str(),
-                    stage["status"].get<std::string>().c_str(), stage["score"].get<double>(),
-                    stage["max_score"].get<double>(), stage["message"].get<std::string>().c_str());
+        EXPECT_TRUE(stage["status"] == "failed") << m.name << ": " << stage["status"] << ": " << stage["message"];
+        EXPECT_LE(score, max - 0.2 * max + 1e-9) << m.name << " lost less than 2 of 10 points";
+        if (m.gross) EXPECT_LE(score, 0.2 * max + 1e-9) << m.name << " is gross but kept more than 2 of 10";
+        signatures.push_back({{"stage", m.stage}, {"mutant", m.name}, {"failed", failedItems(stage)}});
+        std::string hints;
+        for (const json& h : stage.value("hints", json::array())) hints += h.get<std::string>() + " | ";
+        std::printf("%-14s %-40s %-6s %5.2f/%g %s  %s\n", m.stage.c_str(), m.name.c_str(), m.gross ? "gross" : "",
+                    score, max, stage["message"].get<std::string>().c_str(), hints.c_str());
+        if (!m.hint.empty() && hintFor(m.stage, failedItems(stage)))
+            EXPECT_NE(hints.find(m.hint), std::string::npos)
+                << m.name << ": the manifest's hints for its signature do not include its own; run "
+                   "tools/mutant_hints.py (docs/grading.md)";
+    }
+    if (const char* out = std::getenv("VOXLAB_MUTANT_SIGNATURES"))
+        std::ofstream(out) << json{{"signatures", signatures}}.dump(1) << "\n";
+    fs::remove_all(root);
+}
+
+// Correct solutions written the ways students write them keep full marks.
+TEST(MutantSuite, EveryCorrectAlternativeKeepsFullMarks) {
+    const std::vector<Mutant> alternatives = loadAlternatives();
+    ASSERT_GE(alternatives.size(), 20u) << "tests/mutants/mutants.json needs its correct alternatives";
+    const fs::path root = scratch("alternatives");
+    const std::vector<json> reports = gradeVariants(alternatives, root);
+    ASSERT_EQ(reports.size(), alternatives.size());
+    for (std::size_t i = 0; i < alternatives.size(); ++i) {
+        const json& stage = reports[i]["stages"].at(0);
+        EXPECT_EQ(stage["status"], "passed") << alternatives[i].name << " (" << alternatives[i].bug
+                                             << "): " << stage["message"];
+        EXPECT_DOUBLE_EQ(stage["score"].get<double>(), stage["max_score"].get<double>()) << alternatives[i].name;
     }
     fs::remove_all(root);
 }

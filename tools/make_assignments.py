@@ -26,6 +26,9 @@ import os
 import re
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import manifest_format  # noqa: E402  (beside this script)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 REFERENCE = os.path.join(ROOT, "reference")
 ASSIGNMENTS = os.path.join(ROOT, "assignments")
@@ -101,16 +104,20 @@ def generate(path, text):
 
 def without_hidden_scenes(rel, text):
     """A grading manifest without its hidden scenes (graded, never shipped),
-    and the paths of those scenes' files, which are not shipped either."""
+    nor the hints whose signature names one, and the paths of those scenes'
+    files, which are not shipped either."""
     manifest = json.loads(text)
     scenes = manifest.get("scenes", [])
     hidden = [s for s in scenes if s.get("hidden")]
     if not hidden:
         return text, set()
     manifest["scenes"] = [s for s in scenes if not s.get("hidden")]
+    names = {s["name"] for s in hidden}
+    if "hints" in manifest:
+        manifest["hints"] = [h for h in manifest["hints"] if not names & set(h.get("failed", []))]
     stage = os.path.dirname(rel)
     paths = {os.path.normpath(os.path.join(stage, s["scene"])) for s in hidden}
-    return json.dumps(manifest, indent=2, ensure_ascii=False) + "\n", paths
+    return manifest_format.dumps(manifest), paths
 
 
 def expected_files():

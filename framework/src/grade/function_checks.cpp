@@ -601,7 +601,10 @@ json runPlaneBox(const std::string&) {
     // really passes through it.
     auto grid = [](glm::dvec3 v, double step) { return glm::round(v / step) * step; };
     for (int i = 0; i < kCases; ++i) {
-        const glm::dvec3 lo = grid(rng.inBox(glm::dvec3(-2.0), glm::dvec3(2.0)), 1.0 / 64.0);
+        // One box in ten far from the origin (2^20 away: the handout's
+        // "absolute epsilons" pitfall); still exact on the grids.
+        const glm::dvec3 far = i % 10 == 9 ? glm::dvec3(std::ldexp(rng.index(2) ? 1.0 : -1.0, 20)) : glm::dvec3(0.0);
+        const glm::dvec3 lo = far + grid(rng.inBox(glm::dvec3(-2.0), glm::dvec3(2.0)), 1.0 / 64.0);
         const glm::dvec3 hi = lo + grid(rng.inBox(glm::dvec3(0.25), glm::dvec3(3.0)), 1.0 / 64.0);
         const double diagonal = glm::length(hi - lo);
         auto boxCorner = [&](int bits) {  // bit k set: the high side on axis k
@@ -653,8 +656,11 @@ json runPlaneBox(const std::string&) {
             }
             if (clearOfCorners(normal, offset)) break;
         }
-        // The normal need not have unit length.
-        const double scale = std::ldexp(1.0, rng.index(21) - 10);
+        // The normal need not have unit length: scaled by 2^-10..2^10, and
+        // one case in ten each by about 1e200 and 1e-300 (the handout's
+        // extreme normals: |n| overflows or underflows when squared).
+        const int exponent = i % 10 == 7 ? 664 : i % 10 == 8 ? -997 : rng.index(21) - 10;
+        const double scale = std::ldexp(1.0, exponent);
         normal *= scale;
         offset *= scale;
         const json output = callStage([&] {
@@ -820,6 +826,45 @@ json runFirstHit(const std::string& root) {
     check["not_implemented"] = results.notImplemented;
     return check;
 }
+
+// ---------------------------------------------------------------------------
+// mip_random_rays, minip_random_rays, average_random_rays (stages mip,
+// minip, average): the projection of random rays through random int16 data
+// (the whole range -32768..32767, negative values included, as the MIP
+// handout promises), with unequal spacings and random steps.
+
+json runProjection(const std::string& root, const std::string& stage, const std::string& function, std::uint32_t seed) {
+    CheckRandom rng(seed);
+    probe::ProbeVolume volume = randomVolume(rng, glm::ivec3(6, 7, 5), glm::dvec3(1.3, 0.8, 1.1), 65535.0, -32768.0);
+    for (float& v : volume.values) v = float(std::round(double(v) * 65535.0) / 65535.0);  // whole int16 values
+    volume.linearFilter = true;
+    const glm::dvec3 extent(volume.extent);
+    std::vector<ProbeRay> rays;
+    std::vector<double> steps;
+    while (int(rays.size()) < kCases) {
+        const bool inside = rays.size() % 4 == 3;
+        const glm::dvec3 through = rng.inBox(0.05 * extent, 0.95 * extent);
+        const double back = inside ? rng.range(0.0, 1.0) : glm::length(extent) + rng.range(0.1, 2.0);
+        const ProbeRay ray = boxRay(rng, extent, through, back);
+        const double step = f32(rng.range(0.2, 0.9));
+        if (clearSampleCount(ray, step) < 1) continue;  // at least one sample, and no doubt about how many
+        rays.push_back(ray);
+        steps.push_back(step);
+    }
+    const probe::ProbeResults results =
+        marchRays(root, "probes/" + stage + "_probe.frag", volume, rays,
+                  [&](const ShaderProgram& program, int i) { program.set("u_step", float(steps[std::size_t(i)])); });
+    json check = checkJson(stage + "_random_rays", stage);
+    check["fixture"] = {{"volume", volumeJson(volume)}, {"interpolation", "hardware"}};
+    for (std::size_t k = 0; k < rays.size(); ++k)
+        addCase(check, function, rayInput(rays[k], steps[k]), {{"value", number(results.first[k].x)}});
+    check["not_implemented"] = results.notImplemented;
+    return check;
+}
+
+json runMipRays(const std::string& root) { return runProjection(root, "mip", "mip_ray", 0x5EED000Au); }
+json runMinipRays(const std::string& root) { return runProjection(root, "minip", "minip_ray", 0x5EED000Bu); }
+json runAverageRays(const std::string& root) { return runProjection(root, "average", "average_ray", 0x5EED000Cu); }
 
 // ---------------------------------------------------------------------------
 // iso_hit_random_rays (stage iso)
@@ -1086,6 +1131,15 @@ CaseVerdict compareFirstHit(const std::string&, const json&, const json& e, cons
     return t;
 }
 
+// The same samples give the same values; a sample's position differs
+// between correct implementations by float rounding (~1e-5 units), its
+// value by at most the largest slope (65535 per ~0.8 units) times that,
+// about 1: 8 data units (1.2e-4 of the range) allows it, while a sample
+// more or fewer, or one at the wrong place, moves a value by thousands.
+CaseVerdict compareProjection(const std::string&, const json&, const json& e, const json& a) {
+    return compareNumbers(e.at("value"), a.value("value", json()), 8.0, 0.0);
+}
+
 CaseVerdict compareIsoHit(const std::string&, const json& input, const json& e, const json& a) {
     bool bothHit = false;
     CaseVerdict flags = compareHitFlags(e, a, &bothHit);
@@ -1142,12 +1196,25 @@ const std::vector<CheckDefinition>& definitions() {
          runSliceAxis, compareSliceAxis},
         {{"plane_box_random", "texslice3d",
           "planeBoxPolygon() on random planes and boxes: through corners and edges, parallel to and containing "
-          "faces, missing the box; vertices compared as a counter-clockwise cycle"},
+          "faces, missing the box, normals of length ~1e200 and ~1e-300, boxes 2^20 from the origin; vertices "
+          "compared as a counter-clockwise cycle"},
          runPlaneBox, comparePlaneBox},
         {{"first_hit_random_rays", "firsthit",
           "first_hit() on random rays through a random 7x6x8 volume, with random steps and thresholds: rays from "
           "outside the box and from inside it, hits and misses; t within 1e-4 (1 + |t|), far below half a step"},
          runFirstHit, compareFirstHit},
+        {{"mip_random_rays", "mip",
+          "mip_ray() on random rays through a random 6x7x5 volume of int16 values (-32768..32767) with unequal "
+          "spacings and random steps: rays from outside the box and from inside it; values within 8"},
+         runMipRays, compareProjection},
+        {{"minip_random_rays", "minip",
+          "minip_ray() on random rays through a random 6x7x5 volume of int16 values (-32768..32767) with unequal "
+          "spacings and random steps: rays from outside the box and from inside it; values within 8"},
+         runMinipRays, compareProjection},
+        {{"average_random_rays", "average",
+          "average_ray() on random rays through a random 6x7x5 volume of int16 values (-32768..32767) with "
+          "unequal spacings and random steps: rays from outside the box and from inside it; values within 8"},
+         runAverageRays, compareProjection},
         {{"iso_hit_random_rays", "iso",
           "iso_hit() on random rays through a bumpy ball, with random steps and 0 or 4 to 6 bisection steps: "
           "misses, hits from outside, rays starting inside; t within step / 2^(k+3) for k steps"},

@@ -29,9 +29,11 @@ json gradescopeResults(const json& report) {
     json tests = json::array();
     for (const json& stage : report.value("stages", json::array())) {
         const std::string title = stage.value("title", stage.value("stage", "?"));
-        const std::string stageNote = stage.value("status", "") == "passed" || stage.value("status", "") == "example"
-                                          ? ""
-                                          : stage.value("message", "");
+        std::string stageNote = stage.value("status", "") == "passed" || stage.value("status", "") == "example"
+                                    ? ""
+                                    : stage.value("message", "");
+        for (const json& hint : stage.value("hints", json::array()))
+            if (hint.is_string()) stageNote += "\nHint: " + hint.get<std::string>();
         bool any = false;
         for (const char* kind : {"scenes", "checks"})
             for (const json& item : stage.value(kind, json::array())) {
@@ -46,6 +48,15 @@ json gradescopeResults(const json& report) {
                                  {"output", output},
                                  {"visibility", item.value("hidden", false) ? "after_due_date" : "visible"}});
             }
+        if (any && stage.contains("all_pass") && stage["all_pass"].value("max_score", 0.0) > 0.0) {
+            const json& bonus = stage["all_pass"];
+            tests.push_back({{"name", title + ": every scene and check passes"},
+                             {"score", rounded(bonus.value("score", 0.0))},
+                             {"max_score", rounded(bonus.value("max_score", 0.0))},
+                             {"status", bonus.value("status", "") == "passed" ? "passed" : "failed"},
+                             {"output", bonus.value("message", "")},
+                             {"visibility", "visible"}});
+        }
         if (!any) {
             std::string output = stage.value("message", "");
             if (stage.contains("log")) output += "\n\n" + stage["log"].get<std::string>();

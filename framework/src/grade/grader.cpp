@@ -98,6 +98,7 @@ std::vector<std::string> chosenStages(const GraderOptions& options) {
 // or a release's goldens.
 StageManifest gradedManifest(const std::string& stage, const GraderOptions& options) {
     StageManifest m = loadStageManifest(options.referenceRoot, stage);
+    checkStageFunctions(m, options.referenceRoot);
     if (!options.hiddenScenes)
         m.scenes.erase(std::remove_if(m.scenes.begin(), m.scenes.end(), [](const GradedScene& s) { return s.hidden; }),
                        m.scenes.end());

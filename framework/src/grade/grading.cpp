@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <limits>
+#include <regex>
 
 #include <nlohmann/json.hpp>
 
@@ -91,6 +93,84 @@ std::vector<std::string> stageFiles(const json& j, const std::filesystem::path& 
 
 }  // namespace
 
+namespace {
+
+std::vector<GradedScene> readScenes(const json& j, const std::filesystem::path& folder, const std::string& path) {
+    std::vector<GradedScene> scenes;
+    if (!j.contains("scenes")) return scenes;
+    if (!j.at("scenes").is_array()) throw Error(path + ": scenes: expected an array");
+    for (std::size_t i = 0; i < j.at("scenes").size(); ++i) {
+        const json& s = j.at("scenes")[i];
+        const std::string where = path + ": scenes[" + std::to_string(i) + "]";
+        if (!s.is_object()) throw Error(where + ": expected an object");
+        GradedScene g;
+        g.name = text(s, "name", where, true);
+        g.scenePath = (folder / text(s, "scene", where, true)).lexically_normal().string();
+        g.weight = number(s, "weight", 1.0, where);
+        if (s.contains("hidden") && !s.at("hidden").is_boolean()) throw Error(where + ": hidden: expected true or false");
+        g.hidden = s.value("hidden", false);
+        if (s.contains("tolerance")) g.tolerance = readTolerance(s.at("tolerance"), where + ".tolerance");
+        g.functions = stringList(s, "functions", where);
+        if (g.name.empty() || g.name.find_first_of("/\\. ") != std::string::npos)
+            throw Error(where + ": name: use letters, digits and underscores");
+        scenes.push_back(g);
+    }
+    return scenes;
+}
+
+std::vector<GradedCheck> readChecks(const json& j, const std::string& path) {
+    std::vector<GradedCheck> checks;
+    if (!j.contains("checks")) return checks;
+    if (!j.at("checks").is_array()) throw Error(path + ": checks: expected an array");
+    for (std::size_t i = 0; i < j.at("checks").size(); ++i) {
+        const json& c = j.at("checks")[i];
+        const std::string where = path + ": checks[" + std::to_string(i) + "]";
+        if (!c.is_object()) throw Error(where + ": expected an object");
+        checks.push_back({text(c, "name", where, true), number(c, "weight", 1.0, where), stringList(c, "functions", where)});
+    }
+    return checks;
+}
+
+std::vector<StageHint> readHints(const json& j, const StageManifest& m, const std::string& path) {
+    std::vector<StageHint> hints;
+    if (!j.contains("hints")) return hints;
+    if (!j.at("hints").is_array()) throw Error(path + ": hints: expected an array");
+    for (std::size_t i = 0; i < j.at("hints").size(); ++i) {
+        const json& h = j.at("hints")[i];
+        const std::string where = path + ": hints[" + std::to_string(i) + "]";
+        if (!h.is_object()) throw Error(where + ": expected an object");
+        StageHint hint{stringList(h, "failed", where), stringList(h, "hints", where)};
+        for (const std::string& name : hint.failed) {
+            bool known = false;
+            for (const GradedScene& s : m.scenes) known = known || s.name == name;
+            for (const GradedCheck& c : m.checks) known = known || c.name == name;
+            if (!known) throw Error(where + ": failed: '" + name + "' is not a scene or check of this stage");
+        }
+        std::sort(hint.failed.begin(), hint.failed.end());
+        hints.push_back(hint);
+    }
+    return hints;
+}
+
+// Items name only the stage's functions.
+void checkItemFunctions(const StageManifest& m, const std::string& path) {
+    for (const std::string& f : m.functions)
+        if (f.empty() || f.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") !=
+                             std::string::npos)
+            throw Error(path + ": functions: '" + f + "' is not a function name");
+    auto known = [&](const std::vector<std::string>& names, const std::string& where) {
+        for (const std::string& n : names)
+            if (std::find(m.functions.begin(), m.functions.end(), n) == m.functions.end())
+                throw Error(path + ": " + where + ": functions: '" + n + "' is not one of the stage's functions");
+    };
+    for (const GradedScene& s : m.scenes) known(s.functions, "scene " + s.name);
+    for (const GradedCheck& c : m.checks) known(c.functions, "check " + c.name);
+    if (m.points > 0 && m.functions.empty())
+        throw Error(path + ": functions: required for a graded stage (what students write)");
+}
+
+}  // namespace
+
 StageManifest loadStageManifest(const std::string& root, const std::string& stage) {
     const std::filesystem::path folder = std::filesystem::path(root) / stage;
     const std::string path = (folder / "grading.json").string();
@@ -106,38 +186,41 @@ StageManifest loadStageManifest(const std::string& root, const std::string& stag
     m.about = text(j, "about", path, false);
     m.points = number(j, "points", 10.0, path);
     if (!(m.points >= 0)) throw Error(path + ": points: must be >= 0");
-    if (j.contains("scenes")) {
-        if (!j.at("scenes").is_array()) throw Error(path + ": scenes: expected an array");
-        for (std::size_t i = 0; i < j.at("scenes").size(); ++i) {
-            const json& s = j.at("scenes")[i];
-            const std::string where = path + ": scenes[" + std::to_string(i) + "]";
-            if (!s.is_object()) throw Error(where + ": expected an object");
-            GradedScene g;
-            g.name = text(s, "name", where, true);
-            g.scenePath = (folder / text(s, "scene", where, true)).lexically_normal().string();
-            g.weight = number(s, "weight", 1.0, where);
-            if (s.contains("hidden") && !s.at("hidden").is_boolean()) throw Error(where + ": hidden: expected true or false");
-            g.hidden = s.value("hidden", false);
-            if (s.contains("tolerance")) g.tolerance = readTolerance(s.at("tolerance"), where + ".tolerance");
-            if (g.name.empty() || g.name.find_first_of("/\\. ") != std::string::npos)
-                throw Error(where + ": name: use letters, digits and underscores");
-            m.scenes.push_back(g);
-        }
-    }
-    if (j.contains("checks")) {
-        if (!j.at("checks").is_array()) throw Error(path + ": checks: expected an array");
-        for (std::size_t i = 0; i < j.at("checks").size(); ++i) {
-            const json& c = j.at("checks")[i];
-            const std::string where = path + ": checks[" + std::to_string(i) + "]";
-            if (!c.is_object()) throw Error(where + ": expected an object");
-            m.checks.push_back({text(c, "name", where, true), number(c, "weight", 1.0, where)});
-        }
-    }
+    m.scenes = readScenes(j, folder, path);
+    m.checks = readChecks(j, path);
     m.files = stageFiles(j, folder, path);
     m.cppFunctions = stringList(j, "cpp_functions", path);
     for (const std::string& f : m.cppFunctions)
         if (!isStageFunction(f)) throw Error(path + ": cpp_functions: '" + f + "' is not a C++ stage function");
+    m.functions = stringList(j, "functions", path);
+    m.requires = stringList(j, "requires", path);
+    checkItemFunctions(m, path);
+    m.hints = readHints(j, m, path);
     return m;
+}
+
+void checkStageFunctions(const StageManifest& m, const std::string& root) {
+    const std::filesystem::path folder = std::filesystem::path(root) / m.stage;
+    const std::string path = (folder / "grading.json").string();
+    std::string sources;
+    for (const std::string& f : m.files) {
+        std::ifstream in(folder / f, std::ios::binary);
+        if (!in) throw Error(path + ": files: cannot read " + f);
+        sources += json_text::readCappedText(in, (folder / f).string()) + "\n";
+    }
+    for (const std::string& f : m.functions)
+        if (!std::regex_search(sources, std::regex("\\b" + f + "\\s*\\(")))
+            throw Error(path + ": functions: '" + f + "' is not defined in the stage's files");
+}
+
+std::vector<std::string> hintsFor(const StageManifest& manifest, const std::vector<std::string>& failedSorted) {
+    std::vector<std::string> out;
+    if (failedSorted.empty()) return out;
+    for (const StageHint& h : manifest.hints)
+        if (h.failed == failedSorted)
+            for (const std::string& text : h.hints)
+                if (std::find(out.begin(), out.end(), text) == out.end()) out.push_back(text);
+    return out;
 }
 
 std::vector<StageManifest> stageManifests(const std::string& root) {
@@ -147,6 +230,12 @@ std::vector<StageManifest> stageManifests(const std::string& root) {
         if (entry.is_directory() && std::filesystem::exists(entry.path() / "grading.json"))
             manifests.push_back(loadStageManifest(root, entry.path().filename().string()));
     if (ec) throw Error(root + ": cannot list the stages: " + ec.message());
+    for (const StageManifest& m : manifests) {
+        checkStageFunctions(m, root);
+        for (const std::string& r : m.requires)
+            if (std::none_of(manifests.begin(), manifests.end(), [&](const StageManifest& o) { return o.stage == r; }))
+                throw Error(root + "/" + m.stage + "/grading.json: requires: no stage '" + r + "'");
+    }
     std::sort(manifests.begin(), manifests.end(), [](const StageManifest& a, const StageManifest& b) {
         return a.order != b.order ? a.order < b.order : a.stage < b.stage;
     });
@@ -204,12 +293,13 @@ double toleranceRatio(const ImageMetrics& m, const Tolerance& t) {
 double creditForRatio(double ratio) {
     if (!(ratio <= 3.0)) return 0.0;  // NaN too
     if (ratio <= 1.0) return 1.0;
-    return (3.0 - ratio) / 2.0;
+    return (3.0 - ratio) / 4.0;
 }
 
 double creditForFailedCases(double failedFraction) {
     if (!(failedFraction >= 0.0)) return 0.0;
-    return std::max(0.0, 1.0 - failedFraction / 0.1);
+    if (failedFraction == 0.0) return 1.0;
+    return 0.5 * std::max(0.0, 1.0 - failedFraction / 0.1);
 }
 
 nlohmann::json toJson(const ImageMetrics& m) {

@@ -232,6 +232,8 @@ std::string stageSection(const json& stage, const std::string& id, const std::st
     const std::string message = html::text(stage, "message"), about = html::text(stage, "about");
     if (!message.empty()) out += "<p class=\"message\">" + html::escape(message) + "</p>\n";
     if (!about.empty()) out += "<p class=\"about\">" + html::escape(about) + "</p>\n";
+    for (const json& hint : html::array(stage, "hints"))
+        if (hint.is_string()) out += "<p class=\"hint\">Hint: " + html::escape(hint.get<std::string>()) + "</p>\n";
     if (auto seconds = html::number(stage, "elapsed_s"))
         out += "<p class=\"sub\">Graded in " + html::formatSeconds(*seconds) + ".</p>\n";
     const std::string log = html::text(stage, "log");
@@ -249,6 +251,12 @@ std::string stageSection(const json& stage, const std::string& id, const std::st
     }
     const json& checks = html::array(stage, "checks");
     if (!checks.empty()) out += "<h3>Function checks</h3>\n" + checksTable(checks);
+    if (stage.contains("all_pass") && html::number(stage["all_pass"], "max_score").value_or(0.0) > 0.0) {
+        const json& bonus = stage["all_pass"];
+        out += "<p class=\"sub\">Every scene and check passes: " +
+               html::escape(html::formatScore(html::number(bonus, "score"), html::number(bonus, "max_score"))) +
+               " (" + html::escape(html::text(bonus, "message")) + ").</p>\n";
+    }
     return out + "</section>\n";
 }
 

@@ -41,6 +41,7 @@ h3 { margin: 22px 0 10px; font-size: 15px; text-transform: uppercase; letter-spa
 .sub { color: var(--muted); font-size: 12.5px; }
 .message { margin: 8px 0; }
 .about { color: var(--muted); margin: 4px 0; }
+.hint { margin: 6px 0; padding: 6px 10px; border-left: 4px solid #d9a400; background: rgba(217, 164, 0, 0.10); }
 .legend { color: var(--muted); font-size: 12.5px; margin: 10px 0 0; }
 
 table { border-collapse: collapse; width: 100%; }

@@ -142,6 +142,7 @@ void copyTask(const std::string& manifestRoot, const StageManifest& manifest, bo
             if (!s.value("hidden", false)) kept.push_back(s);
         j["scenes"] = kept;
     }
+    j.erase("hints");  // the grader's business; they name hidden scenes
     fs::create_directories(to);
     writeFileAtomically((to / "grading.json").string(), j.dump(2) + "\n");
     for (const GradedScene& scene : manifest.scenes) {

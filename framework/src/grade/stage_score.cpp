@@ -1,4 +1,5 @@
 // voxlab grader: scoring one stage's outputs against the expected ones.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -208,16 +209,26 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
         entry["credit"] = c;
         checks.push_back(entry);
     }
-    // Points per item, in proportion to weight.
-    const double perWeight = weightSum > 0 ? manifest.points / weightSum : 0.0;
+    // Points per item, in proportion to weight, for all but the share that
+    // only a stage with every item passed earns (grading.h).
+    const double itemPoints = manifest.points * (1.0 - kAllPassShare);
+    const double perWeight = weightSum > 0 ? itemPoints / weightSum : 0.0;
+    bool allPassed = weightSum > 0;
     for (json* items : {&scenes, &checks})
         for (json& e : *items) {
             e["max_score"] = perWeight * e["weight"].get<double>();
             e["score"] = e["max_score"].get<double>() * e["credit"].get<double>();
+            allPassed = allPassed && e["status"] == "passed";
         }
     stage["scenes"] = scenes;
     stage["checks"] = checks;
-    stage["score"] = perWeight * credit;
+    const double bonusMax = weightSum > 0 ? manifest.points * kAllPassShare : 0.0;
+    stage["all_pass"] = {{"max_score", bonusMax},
+                         {"score", allPassed ? bonusMax : 0.0},
+                         {"status", allPassed ? "passed" : "failed"},
+                         {"message", allPassed ? "every scene and check passed"
+                                               : "earned only when every scene and check passes"}};
+    stage["score"] = perWeight * credit + (allPassed ? bonusMax : 0.0);
     stage["sandbox"] = outcome.sandbox;
     if (!compileLog.empty()) stage["log"] = compileLog;
     auto [status, message] = stageStatus(outcome, compileLog, scenes, checks);
@@ -228,6 +239,16 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
     if (ran && (!outcome.finished || anyError) && !outcome.output.empty() && status != "compile_error")
         stage["log"] = relativePaths(outcome.output, run);
     if (manifest.points == 0.0 && status == "passed") status = "example";
+    if (status == "failed") {  // a known mistake's signature (grading.h): what it suggests
+        std::vector<std::string> failed;
+        for (const json* items : {&scenes, &checks})
+            for (const json& e : *items)
+                if (e["status"] != "passed") failed.push_back(e["name"]);
+        std::sort(failed.begin(), failed.end());
+        const std::vector<std::string> hints = hintsFor(manifest, failed);
+        if (!hints.empty()) stage["hints"] = std::vector<std::string>(hints.begin(), hints.begin() + std::min<std::size_t>(3, hints.size()));
+    }
+    if (!manifest.requires.empty()) stage["requires"] = manifest.requires;
     stage["status"] = status;
     stage["message"] = message;
     return stage;

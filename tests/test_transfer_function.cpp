@@ -331,5 +331,5 @@ TEST(TransferFunctionPresets, AllLoad) {
         EXPECT_EQ(tf.points().front().alpha, 0.0f);  // the background stays clear
         ++count;
     }
-    EXPECT_EQ(count, 8);
+    EXPECT_EQ(count, 9);
 }

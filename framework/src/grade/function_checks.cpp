@@ -836,7 +836,13 @@ json runFirstHit(const std::string& root) {
 json runProjection(const std::string& root, const std::string& stage, const std::string& function, std::uint32_t seed) {
     CheckRandom rng(seed);
     probe::ProbeVolume volume = randomVolume(rng, glm::ivec3(6, 7, 5), glm::dvec3(1.3, 0.8, 1.1), 65535.0, -32768.0);
-    for (float& v : volume.values) v = float(std::round(double(v) * 65535.0) / 65535.0);  // whole int16 values
+    // Skewed so that many rays' results are negative for MIP (most values
+    // low) and positive for MinIP (most values high): a maximum that starts
+    // at 0, or a minimum that does, fails many cases. Whole int16 values.
+    for (float& v : volume.values) {
+        const double u = stage == "mip" ? std::pow(double(v), 3.0) : stage == "minip" ? 1.0 - std::pow(double(v), 3.0) : v;
+        v = float(std::round(u * 65535.0) / 65535.0);
+    }
     volume.linearFilter = true;
     const glm::dvec3 extent(volume.extent);
     std::vector<ProbeRay> rays;

@@ -175,5 +175,51 @@ TEST_F(ViewerWindow, ABadScriptOrDatasetIsAOneLineError) {
     EXPECT_NE(missing.err.find("no_such_volume.nrrd"), std::string::npos) << missing.err;
 }
 
+// A student release has no reference/: its split view compares a grading
+// scene with the shipped expected image (rendered here by the grader from
+// reference/, as tools/make_student_release.sh does), never with the
+// student's own code. In difference mode a correct MIP shows (almost)
+// black over the image, one whose maximum starts at 0 shows the air of the
+// signed CT lit up; away from a grading scene it shows nothing to compare.
+TEST_F(ViewerWindow, AStudentReleaseComparesWithTheExpectedImage) {
+    const fs::path release = dir_ / "release";
+    fs::create_directories(release / "assignments");
+    for (const char* item : {"shaders", "datasets", "CMakeLists.txt"})
+        fs::create_symlink(fs::path(VOXLAB_SOURCE_DIR) / item, release / item);
+    fs::copy(fs::path(VOXLAB_SOURCE_DIR) / "assignments", release / "assignments", fs::copy_options::recursive);
+    const CommandResult expected = runShell(std::string(VOXLAB_BINARY) + " grade --render-expected " +
+                                                (release / "expected").string() + " --stage mip --quiet",
+                                            240);
+    ASSERT_EQ(expected.exitCode, 0) << expected.err;
+    auto difference = [&](const std::string& find, const std::string& replace, const std::string& png) {
+        std::string code;
+        {
+            std::ifstream in(fs::path(VOXLAB_SOURCE_DIR) / "reference/mip/mip.glsl");
+            code.assign(std::istreambuf_iterator<char>(in), {});
+        }
+        if (!find.empty()) code.replace(code.find(find), find.size(), replace);
+        std::ofstream(release / "assignments/mip/mip.glsl") << code;
+        std::ofstream(path("release.vs")) << "load " << (release / "assignments/mip/scenes/headsq_hu_oblique.json").string()
+                                          << "\npanel tf off\npanel controls off\nsplit difference\nwait 3\n"
+                                          << "screenshot " << path(png) << "\nload bonsai.nrrd\nsplit on\nwait 2\n"
+                                          << "screenshot " << path("away_" + png) << "\nquit\n";
+        const CommandResult r = runShell("env VOXLAB_ROOT=" + release.string() +
+                                             " xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(VOXLAB_BINARY) +
+                                             " view --script " + path("release.vs") + " --window-size 640x400",
+                                         240);
+        EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
+        const Image shot = loadPng(path(png)), away = loadPng(path("away_" + png));
+        // The 128x128 image letterboxed into 640x400: the square in the middle.
+        const Region square{120, 0, 520, 380};
+        EXPECT_LT(stats(away, square).mean, 0.02) << "away from a grading scene nothing is compared";
+        return stats(shot, square).mean;
+    };
+    const double correct = difference("", "", "correct.png");
+    const double buggy = difference("float maximum = -3.4e38;", "float maximum = 0.0;", "buggy.png");
+    std::printf("mean grey of the difference view: correct %.4f, maximum starting at 0 %.4f\n", correct, buggy);
+    EXPECT_LT(correct, 0.01);
+    EXPECT_GT(buggy, 0.2);
+}
+
 }  // namespace
 }  // namespace voxlab::testing

@@ -7,13 +7,16 @@
 //   u_mode 2  difference: a heat map of the largest per-channel |left - right|,
 //             amplified four times (black: equal; purple, orange, yellow: more).
 // With u_count_scale > 0 the images hold sample counts in red (the samples
-// view): each is shown as heat(count * u_count_scale) first.
+// view): each is shown as heat(count * u_count_scale) first. With
+// u_image_aspect > 0 (a student release comparing with an expected image)
+// the images keep that width / height, centred, on dark grey.
 uniform sampler2D u_left;
 uniform sampler2D u_right;
 uniform vec2 u_viewport_size;  // framebuffer pixels
 uniform float u_divider;       // framebuffer x of the divider
 uniform int u_mode;
 uniform float u_count_scale;
+uniform float u_image_aspect;
 
 out vec4 frag_color;
 
@@ -32,6 +35,15 @@ vec3 image(sampler2D side, vec2 uv) {
 
 void main() {
     vec2 uv = gl_FragCoord.xy / u_viewport_size;
+    if (u_image_aspect > 0.0) {
+        float window = u_viewport_size.x / u_viewport_size.y;
+        vec2 scale = window > u_image_aspect ? vec2(window / u_image_aspect, 1.0) : vec2(1.0, u_image_aspect / window);
+        uv = (uv - 0.5) * scale + 0.5;
+        if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) {
+            frag_color = vec4(0.12, 0.12, 0.12, 1.0);
+            return;
+        }
+    }
     vec3 left = image(u_left, uv);
     if (u_mode == 0) {
         frag_color = vec4(left, 1.0);

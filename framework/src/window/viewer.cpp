@@ -102,7 +102,9 @@ void handleKeys(State& s) {
         s.dirty = true;
     }
     if (pressed(GLFW_KEY_S)) s.split = SplitMode((int(s.split) + 1) % 3), s.dirty = true;
-    if (pressed(GLFW_KEY_I)) {
+    if (pressed(GLFW_KEY_I) && !hasReference()) s.say("a student release has no reference: split view (S) compares "
+                                                      "a grading scene with its expected image", 3.0);
+    else if (pressed(GLFW_KEY_I)) {
         try {
             setImplementation(s.main, s.main.implementation.empty() ? s.studentRoot : "", *s.volume);
             s.say(std::string("left side: ") + (s.main.implementation.empty() ? "reference" : "student"), 2.0);
@@ -207,7 +209,8 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
         glfwPollEvents();
         const auto frameStart = Clock::now();
         glfwGetFramebufferSize(window.handle(), &s.fbWidth, &s.fbHeight);
-        if (s.fbWidth != s.imageWidth || s.fbHeight != s.imageHeight) s.dirty = s.dirty || !s.interactive;
+        // (A student release comparing with an expected image renders at that image's size.)
+        if ((s.fbWidth != s.imageWidth || s.fbHeight != s.imageHeight) && !comparesWithExpected(s)) s.dirty = s.dirty || !s.interactive;
         if (script) {
             try {
                 if (script->step(s, window.handle()) == ScriptRunner::Done) break;

@@ -78,6 +78,10 @@ bool rendererCombo(const char* label, std::string* id, bool allowSame) {
 // student side reads).
 void implementationSwitch(const char* label, State& s, Side& side) {
     int which = side.implementation.empty() ? 0 : 1;
+    if (!hasReference()) {  // a student release: the starter code is the only implementation
+        ImGui::Text("%s your code (assignments/)", label);
+        return;
+    }
     ImGui::PushID(label);
     ImGui::TextUnformatted(label);
     ImGui::SameLine();
@@ -141,8 +145,15 @@ void techniquePanel(State& s) {
 
     sectionTitle("split view (S)");
     int split = int(s.split);
-    if (ImGui::Combo("mode", &split, "off\0student | reference\0difference\0")) s.split = SplitMode(split), s.dirty = true;
-    if (s.split != SplitMode::Off) {
+    const char* modes = hasReference() ? "off\0student | reference\0difference\0"
+                                       : "off\0yours | expected image\0difference\0";
+    if (ImGui::Combo("mode", &split, modes)) s.split = SplitMode(split), s.dirty = true;
+    if (comparesWithExpected(s)) {
+        ImGui::TextWrapped("%s", s.expected.available ? ("the grading scene as graded, against " +
+                                                         s.expected.path.substr(projectRoot().size() + 1))
+                                                            .c_str()
+                                                      : s.expected.why.c_str());
+    } else if (s.split != SplitMode::Off) {
         if (rendererCombo("right renderer", &s.other.renderer, true)) s.dirty = true;
         if (s.other.engine) implementationSwitch("right:", s, s.other);
     }
@@ -279,8 +290,12 @@ void drawOverlays(State& s) {
         fg->AddLine(ImVec2(x, 0), ImVec2(x, size.y), IM_COL32(255, 255, 255, 200), 2.0f * scale);
         fg->AddCircleFilled(ImVec2(x, size.y * 0.5f), 7.0f * scale, IM_COL32(255, 255, 255, 230));
         auto label = [&](const Side& side, bool right) {
-            const std::string text = (side.renderer.empty() ? s.scene.renderer : side.renderer) + " · " +
-                                     (side.implementation.empty() ? "reference" : "student");
+            std::string text = (side.renderer.empty() ? s.scene.renderer : side.renderer) + " · " +
+                               (side.implementation.empty() ? "reference" : "student");
+            if (comparesWithExpected(s))  // a student release: never "reference"
+                text = right ? (s.expected.available ? "expected: " + std::filesystem::path(s.expected.path).filename().string()
+                                                     : std::string("expected: none"))
+                             : "yours: " + s.expected.scene.renderer;
             const ImVec2 t = ImGui::CalcTextSize(text.c_str());
             const float lx = right ? x + 12 * scale : x - 12 * scale - t.x;
             fg->AddRectFilled(ImVec2(lx - 6, size.y - 34 * scale), ImVec2(lx + t.x + 6, size.y - 34 * scale + t.y + 6),
@@ -292,6 +307,13 @@ void drawOverlays(State& s) {
     } else if (s.split == SplitMode::Difference) {
         fg->AddText(ImVec2(size.x * 0.5f - 120 * scale, size.y - 30 * scale), IM_COL32(255, 255, 255, 255),
                     "difference |left - right| x4 (black: equal)");
+    }
+    if (comparesWithExpected(s) && !s.expected.available) {  // a student release away from a grading scene
+        const ImVec2 t = ImGui::CalcTextSize(s.expected.why.c_str());
+        fg->AddRectFilled(ImVec2(size.x * 0.5f - t.x * 0.5f - 8, size.y * 0.5f - 8),
+                          ImVec2(size.x * 0.5f + t.x * 0.5f + 8, size.y * 0.5f + t.y + 8), IM_COL32(0, 0, 0, 200), 4.0f);
+        fg->AddText(ImVec2(size.x * 0.5f - t.x * 0.5f, size.y * 0.5f), IM_COL32(255, 220, 120, 255),
+                    s.expected.why.c_str());
     }
 
     // Frame time, bottom right, always; in the samples view the samples too.

@@ -113,6 +113,19 @@ void renderFrame(State& s) {
     // mouse has settled, keep them.
     if (!s.dirty && !(s.interactive && !busy)) return;
     if (s.fbWidth <= 0 || s.fbHeight <= 0) return;
+    if (comparesWithExpected(s)) {
+        // A student release: the grading scene as graded, against its expected image.
+        updateExpected(s);
+        const auto t0 = Clock::now();
+        s.samplesShown = false;
+        if (s.expected.available) renderSide(s.main, s.expected.scene, false);
+        glFinish();
+        s.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+        s.imageWidth = s.expected.width, s.imageHeight = s.expected.height;
+        s.interactive = false;
+        s.dirty = false;
+        return;
+    }
     const bool reduced = busy && s.dirty;
     const int w = reduced ? std::max(1, int(s.fbWidth / s.reduction)) : s.fbWidth;
     const int h = reduced ? std::max(1, int(s.fbHeight / s.reduction)) : s.fbHeight;
@@ -160,15 +173,20 @@ void presentFrame(State& s) {
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     if (!s.main.engine || !s.main.engine->offscreenTexture()) return;
-    const bool split = s.split != SplitMode::Off && s.other.engine && s.other.engine->offscreenTexture();
+    const bool expected = comparesWithExpected(s);
+    if (expected && !s.expected.available) return;  // the overlay says why
+    const bool split = expected || (s.split != SplitMode::Off && s.other.engine && s.other.engine->offscreenTexture());
     const unsigned textures[2] = {s.main.engine->offscreenTexture(),
-                                  split ? s.other.engine->offscreenTexture() : s.main.engine->offscreenTexture()};
+                                  expected ? s.expected.texture
+                                  : split  ? s.other.engine->offscreenTexture()
+                                           : s.main.engine->offscreenTexture()};
     for (int i = 0; i < 2; ++i) {
         glActiveTexture(GL_TEXTURE0 + i);
         glBindTexture(GL_TEXTURE_2D, textures[i]);
         // Reduced images are filtered up to the window.
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, s.interactive ? GL_LINEAR : GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, s.interactive ? GL_LINEAR : GL_NEAREST);
+        const GLint filter = s.interactive && !expected ? GL_LINEAR : GL_NEAREST;
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
     }
     program->use();
     program->set("u_left", 0);
@@ -177,6 +195,8 @@ void presentFrame(State& s) {
     program->set("u_divider", s.divider * float(s.fbWidth));
     program->set("u_mode", !split ? 0 : s.split == SplitMode::Split ? 1 : 2);
     program->set("u_count_scale", s.samplesShown ? s.countScale : 0.0f);
+    // An expected image keeps its shape: both sides letterboxed, pixels sharp.
+    program->set("u_image_aspect", expected ? float(s.expected.width) / float(s.expected.height) : 0.0f);
     glBindVertexArray(s.presenterVao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glActiveTexture(GL_TEXTURE0);

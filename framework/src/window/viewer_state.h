@@ -48,6 +48,18 @@ struct Side {
     std::string error;           // this side's last render error
 };
 
+// A student release's split view compares with a shipped expected image
+// (viewer_expected.cpp).
+struct ExpectedImage {
+    std::string key;         // the scene file and dataset it was found for
+    std::string path;        // expected/<stage>/<scene>.png, or empty
+    std::string why;         // why there is nothing to compare with
+    bool available = false;
+    Scene scene;             // the grading scene, at the image's size
+    int width = 0, height = 0;
+    unsigned texture = 0;
+};
+
 struct State {
     Scene scene;
     std::string scenePath;          // the scene last opened or saved
@@ -57,6 +69,7 @@ struct State {
     std::string studentRoot;        // the implementation switch's "student" folder
     SplitMode split = SplitMode::Off;
     float divider = 0.5f;           // fraction of the window's width
+    ExpectedImage expected;         // a student release's right side
 
     // Rendering.
     bool dirty = true;              // the scene changed: render again
@@ -116,6 +129,11 @@ void presentFrame(State& s);         // draws the images into the window
 void saveWindowScreenshot(int width, int height, const std::string& path);
 void pickRayProfile(State& s, glm::ivec2 pixel);  // framebuffer pixel; opens the ray-profile panel
 std::string timestampedScreenshotName();
+
+// viewer_expected.cpp
+bool hasReference();                      // reference/ exists (not a student release)
+bool comparesWithExpected(const State& s);  // split view without a reference
+void updateExpected(State& s);            // finds and loads the current scene's expected image
 
 // viewer_panels.cpp
 void drawPanels(State& s);

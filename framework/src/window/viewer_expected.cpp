@@ -1,0 +1,81 @@
+// voxlab viewer: the split view of a student release, which has no
+// reference/ to render. The right side there is the grading scene's
+// expected image, shipped in expected/<stage>/<scene>.png by
+// tools/make_student_release.sh: the left side renders the same scene file
+// at the same size with the student's code, so "split" and "difference"
+// show a real difference. Away from a grading scene the viewer says so
+// instead of showing the student's own code as "reference".
+#include <algorithm>
+#include <filesystem>
+
+#include "voxlab/error.h"
+#include "voxlab_gl.h"
+#include "voxlab/image.h"
+#include "voxlab/shader.h"
+#include "viewer_state.h"
+
+namespace voxlab::viewer {
+
+namespace fs = std::filesystem;
+
+bool hasReference() { return fs::is_directory(projectRoot() + "/reference"); }
+
+bool comparesWithExpected(const State& s) { return s.split != SplitMode::Off && !hasReference(); }
+
+namespace {
+
+// The expected image of a scene file assignments/<stage>/scenes/<name>.json.
+std::string expectedImageFor(const std::string& scenePath) {
+    if (scenePath.empty()) return "";
+    const fs::path scene = fs::absolute(scenePath).lexically_normal();
+    if (scene.parent_path().filename() != "scenes") return "";
+    const std::string stage = scene.parent_path().parent_path().filename().string();
+    const fs::path png = fs::path(projectRoot()) / "expected" / stage / (scene.stem().string() + ".png");
+    return fs::is_regular_file(png) ? png.string() : "";
+}
+
+void upload(State& s, const Image& image) {
+    std::vector<unsigned char> bytes(std::size_t(image.width) * image.height * 4);
+    for (int y = 0; y < image.height; ++y)  // GL's rows run bottom-up
+        for (int x = 0; x < image.width; ++x)
+            for (int c = 0; c < 4; ++c) {
+                const float v = image.rgba[(std::size_t(y) * image.width + x) * 4 + c];
+                bytes[(std::size_t(image.height - 1 - y) * image.width + x) * 4 + c] =
+                    (unsigned char)(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
+            }
+    if (!s.expected.texture) glGenTextures(1, &s.expected.texture);
+    glBindTexture(GL_TEXTURE_2D, s.expected.texture);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image.width, image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+}  // namespace
+
+void updateExpected(State& s) {
+    // Once per scene file and dataset: a dataset loaded after the scene
+    // file is not what the expected image shows.
+    const std::string key = s.scenePath + "\n" + s.scene.dataset;
+    if (key == s.expected.key) return;
+    s.expected.key = key;
+    const std::string png = expectedImageFor(s.scenePath);
+    s.expected.path = png;
+    s.expected.available = false;
+    s.expected.why = "No reference in the student release.\nOpen a grading scene, "
+                     "assignments/<stage>/scenes/*.json,\nto compare with its expected image.";
+    if (png.empty()) return;
+    try {
+        const Image image = loadPng(png);
+        s.expected.scene = Scene::load(s.scenePath);
+        if (s.expected.scene.dataset != s.scene.dataset) return;
+        s.expected.width = image.width, s.expected.height = image.height;
+        s.expected.scene.width = image.width, s.expected.scene.height = image.height;
+        upload(s, image);
+        s.expected.available = true;
+        s.expected.why.clear();
+    } catch (const Error& e) {
+        s.expected.why = e.what();
+    }
+}
+
+}  // namespace voxlab::viewer

@@ -106,10 +106,15 @@ GraderOptions gradingOptions(const fs::path& root) {
     return o;
 }
 
-TEST(MutantSuite, EveryGradedStageHasAtLeastThreeMutantsThatApplyCleanly) {
-    std::map<std::string, int> perStage;
-    for (const Mutant& m : loadMutants()) {
-        ++perStage[m.stage];
+// Each mutant and each alternative applies cleanly inside a solution block;
+// every graded function has at least 5 mutants, 120 in all; a hint names
+// the misconception ("Looks like ...") and holds no line of the solution.
+TEST(MutantSuite, EveryGradedFunctionHasFiveMutantsThatApplyCleanly) {
+    std::map<std::string, int> perFunction;
+    const std::vector<Mutant> mutants = loadMutants(), alternatives = loadAlternatives();
+    std::vector<Mutant> all = mutants;
+    all.insert(all.end(), alternatives.begin(), alternatives.end());
+    for (const Mutant& m : all) {
         EXPECT_EQ(m.file.rfind(m.stage + "/", 0), 0u) << m.name << ": the file must be in its stage's folder";
         const std::string text = readFile(kSource / "reference" / m.file);
         const std::size_t at = text.find(m.find);
@@ -120,10 +125,26 @@ TEST(MutantSuite, EveryGradedStageHasAtLeastThreeMutantsThatApplyCleanly) {
         EXPECT_TRUE(begin != std::string::npos && (end == std::string::npos || end < begin))
             << m.name << ": the change is outside the solution block";
         EXPECT_NE(m.find, m.replace) << m.name;
+        const StageManifest manifest = loadStageManifest((kSource / "reference").string(), m.stage);
+        EXPECT_NE(std::find(manifest.functions.begin(), manifest.functions.end(), m.function), manifest.functions.end())
+            << m.name << ": '" << m.function << "' is not one of " << m.stage << "'s functions";
     }
+    for (const Mutant& m : mutants) {
+        ++perFunction[m.stage + "/" + m.function];
+        EXPECT_EQ(m.hint.rfind("Looks like", 0), 0u) << m.name << ": a hint starts \"Looks like\"";
+        // No solution line (of some length) appears in the hint.
+        std::istringstream solution(readFile(kSource / "reference" / m.file));
+        for (std::string line; std::getline(solution, line);) {
+            line.erase(0, line.find_first_not_of(" \t"));
+            if (line.size() >= 16 && line.rfind("//", 0) != 0)
+                EXPECT_EQ(m.hint.find(line), std::string::npos) << m.name << ": the hint holds solution code";
+        }
+    }
+    EXPECT_GE(mutants.size(), 120u);
     for (const std::string& stage : gradedStages((kSource / "reference").string())) {
-        if (loadStageManifest((kSource / "reference").string(), stage).points == 0.0) continue;  // worked example
-        EXPECT_GE(perStage[stage], 3) << "stage " << stage << " needs at least three mutants";
+        const StageManifest manifest = loadStageManifest((kSource / "reference").string(), stage);
+        for (const std::string& f : manifest.functions)
+            EXPECT_GE(perFunction[stage + "/" + f], 5) << stage << "/" << f << " needs at least five mutants";
     }
 }
 

@@ -54,6 +54,9 @@ tools/setup.sh                 # installs what is missing, builds, opens the vie
   Start with `assignments/README.md`. A stage you have not done shows a magenta checkerboard.
 - **Look at it:** `build/bin/voxlab view` (H lists the keys; R or saving a shader reloads it),
   or `build/bin/voxlab render assignments/mip/scenes/bonsai_oblique.json --out mine.png`.
+- **Compare it** in the viewer: open a grading scene (`build/bin/voxlab view
+  assignments/mip/scenes/bonsai_oblique.json`) and press S: the split view and the difference
+  (S again) show your image against the expected one, the scene as graded.
 - **Check it** the way it will be graded: `build/bin/voxlab check --stage mip`, then open
   `voxlab-check/index.html`. How grading works: `docs/grading.md`.
 - **C++ stages** (`texslice2d`, `texslice3d`) are compiled into `voxlab`: rebuild with

@@ -152,6 +152,15 @@ std::string metricTiles(const json& scene) {
         tiles += metricTile(label, percent(*over), bound ? "\u2264 " + percent(*bound) : "",
                            judge(bool(bound), bound && *over <= *bound));
     }
+    if (auto cluster = html::number(metrics, "largest_cluster")) {
+        const auto bound = html::number(tolerance, "max_cluster");
+        const auto level = html::number(tolerance, "cluster_difference");
+        const std::string label = level ? "Largest patch off by &gt; " + html::formatNumber(*level, 2) + "/255"
+                                        : std::string("Largest badly wrong patch");
+        tiles += metricTile(label, html::formatNumber(*cluster, 0) + " px",
+                           bound ? "\u2264 " + html::formatNumber(*bound, 0) + " px" : "",
+                           judge(bool(bound), bound && *cluster <= *bound));
+    }
     if (auto largest = html::number(metrics, "max_difference"))
         tiles += metricTile("Largest difference", html::formatNumber(*largest, 1) + "/255", "", Verdict::Shown);
     if (auto ssim = html::number(metrics, "ssim")) {

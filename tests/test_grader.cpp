@@ -287,7 +287,41 @@ TEST(GradingManifest, BadManifestsGiveOneLineErrors) {
     expectError(R"({"title": "x", "order": 1, "cpp_functions": ["planeBoxPolygonn"]})",
                 "'planeBoxPolygonn' is not a C++ stage function");
     expectError(R"({"title": "x", "order": 1, "files": ["../mip.glsl"]})", "is not a plain");
+    expectError(R"({"title": "x", "order": 1, "files": []})", "functions: required for a graded stage");
+    expectError(R"({"title": "x", "order": 1, "files": [], "functions": ["mip_ray"],
+                    "scenes": [{"name": "a", "scene": "s.json", "functions": ["mip_rays"]}]})",
+                "'mip_rays' is not one of the stage's functions");
+    expectError(R"({"title": "x", "order": 1, "files": [], "functions": ["mip_ray"],
+                    "hints": [{"failed": ["nosuchscene"], "hints": ["Looks like"]}]})",
+                "'nosuchscene' is not a scene or check of this stage");
     EXPECT_THROW(loadStageManifest(root.string(), "nosuchstage"), Error);
+}
+
+// The manifest's functions must be defined in the stage's files, and its
+// prerequisites must be stages: one-line errors naming the manifest.
+TEST(GradingManifest, FunctionsAndPrerequisitesMustExist) {
+    const fs::path root = scratch("manifest_functions");
+    fs::create_directories(root / "mip");
+    std::ofstream(root / "mip" / "mip.glsl") << "float mip_ray(Ray ray) { return 0.0; }\n";
+    std::ofstream(root / "mip" / "grading.json")
+        << R"({"title": "x", "order": 1, "functions": ["mip_ray", "minip_ray"]})";
+    const auto message = [](auto f) {
+        try {
+            f();
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    const StageManifest m = loadStageManifest(root.string(), "mip");
+    EXPECT_NE(message([&] { checkStageFunctions(m, root.string()); }).find("'minip_ray' is not defined in the stage's files"),
+              std::string::npos);
+    EXPECT_NE(message([&] { stageManifests(root.string()); }).find("minip_ray"), std::string::npos);
+    std::ofstream(root / "mip" / "grading.json")
+        << R"({"title": "x", "order": 1, "functions": ["mip_ray"], "requires": ["sampling"]})";
+    EXPECT_NE(message([&] { stageManifests(root.string()); }).find("requires: no stage 'sampling'"), std::string::npos);
+    std::ofstream(root / "mip" / "grading.json") << R"({"title": "x", "order": 1, "functions": ["mip_ray"]})";
+    EXPECT_EQ(message([&] { stageManifests(root.string()); }), "no error");
 }
 
 TEST(GradingCredit, AFailedItemEarnsAtMostHalfFallingToZeroAtThreeTimesTheThreshold) {

@@ -756,6 +756,15 @@ ProbeRay boxRay(CheckRandom& rng, glm::dvec3 extent, glm::dvec3 through, double 
     return ray;
 }
 
+// The i-th random ray of a marching check: every fourth starts inside the
+// box (t_entry = 0), the others come from up to 2 units outside it.
+ProbeRay marchingRay(CheckRandom& rng, glm::dvec3 extent, std::size_t i) {
+    const bool inside = i % 4 == 3;
+    const glm::dvec3 through = rng.inBox(0.05 * extent, 0.95 * extent);
+    const double back = inside ? rng.range(0.0, 1.0) : glm::length(extent) + rng.range(0.1, 2.0);
+    return boxRay(rng, extent, through, back);
+}
+
 double sampleT(const ProbeRay& ray, double step, int m) { return ray.tEntry + (m + 0.5) * step; }
 
 // floor(L / step + 1/2) samples (ray.glsl), or -1 where L / step + 1/2 is
@@ -796,13 +805,9 @@ json runFirstHit(const std::string& root) {
     std::vector<ProbeRay> rays;
     std::vector<double> steps, thresholds;
     while (int(rays.size()) < kCases) {
-        // One ray in four starts inside the box (t_entry = 0); the others
-        // come from up to 2 units outside it. Steps of 0.15 to 0.7 units
-        // (the smallest spacing is 0.8); thresholds that some rays reach.
-        const bool inside = rays.size() % 4 == 3;
-        const glm::dvec3 through = rng.inBox(0.05 * extent, 0.95 * extent);
-        const double back = inside ? rng.range(0.0, 1.0) : glm::length(extent) + rng.range(0.1, 2.0);
-        const ProbeRay ray = boxRay(rng, extent, through, back);
+        // Steps of 0.15 to 0.7 units (the smallest spacing is 0.8);
+        // thresholds that some rays reach.
+        const ProbeRay ray = marchingRay(rng, extent, rays.size());
         const double step = f32(rng.range(0.15, 0.7));
         const double threshold = f32(rng.range(0.7, 1.3));
         if (!clearFirstHit(volume, ray, step, threshold)) continue;
@@ -848,10 +853,7 @@ json runProjection(const std::string& root, const std::string& stage, const std:
     std::vector<ProbeRay> rays;
     std::vector<double> steps;
     while (int(rays.size()) < kCases) {
-        const bool inside = rays.size() % 4 == 3;
-        const glm::dvec3 through = rng.inBox(0.05 * extent, 0.95 * extent);
-        const double back = inside ? rng.range(0.0, 1.0) : glm::length(extent) + rng.range(0.1, 2.0);
-        const ProbeRay ray = boxRay(rng, extent, through, back);
+        const ProbeRay ray = marchingRay(rng, extent, rays.size());
         const double step = f32(rng.range(0.2, 0.9));
         if (clearSampleCount(ray, step) < 1) continue;  // at least one sample, and no doubt about how many
         rays.push_back(ray);

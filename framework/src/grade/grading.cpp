@@ -95,14 +95,22 @@ std::vector<std::string> stageFiles(const json& j, const std::filesystem::path& 
 
 namespace {
 
+// Calls each(object, where) for every element of the array j[key] (none
+// when the key is missing); anything but an array of objects is an error.
+template <class Each>
+void forEachObject(const json& j, const char* key, const std::string& path, Each each) {
+    if (!j.contains(key)) return;
+    if (!j.at(key).is_array()) throw Error(path + ": " + key + ": expected an array");
+    for (std::size_t i = 0; i < j.at(key).size(); ++i) {
+        const std::string where = path + ": " + key + "[" + std::to_string(i) + "]";
+        if (!j.at(key)[i].is_object()) throw Error(where + ": expected an object");
+        each(j.at(key)[i], where);
+    }
+}
+
 std::vector<GradedScene> readScenes(const json& j, const std::filesystem::path& folder, const std::string& path) {
     std::vector<GradedScene> scenes;
-    if (!j.contains("scenes")) return scenes;
-    if (!j.at("scenes").is_array()) throw Error(path + ": scenes: expected an array");
-    for (std::size_t i = 0; i < j.at("scenes").size(); ++i) {
-        const json& s = j.at("scenes")[i];
-        const std::string where = path + ": scenes[" + std::to_string(i) + "]";
-        if (!s.is_object()) throw Error(where + ": expected an object");
+    forEachObject(j, "scenes", path, [&](const json& s, const std::string& where) {
         GradedScene g;
         g.name = text(s, "name", where, true);
         g.scenePath = (folder / text(s, "scene", where, true)).lexically_normal().string();
@@ -114,31 +122,21 @@ std::vector<GradedScene> readScenes(const json& j, const std::filesystem::path& 
         if (g.name.empty() || g.name.find_first_of("/\\. ") != std::string::npos)
             throw Error(where + ": name: use letters, digits and underscores");
         scenes.push_back(g);
-    }
+    });
     return scenes;
 }
 
 std::vector<GradedCheck> readChecks(const json& j, const std::string& path) {
     std::vector<GradedCheck> checks;
-    if (!j.contains("checks")) return checks;
-    if (!j.at("checks").is_array()) throw Error(path + ": checks: expected an array");
-    for (std::size_t i = 0; i < j.at("checks").size(); ++i) {
-        const json& c = j.at("checks")[i];
-        const std::string where = path + ": checks[" + std::to_string(i) + "]";
-        if (!c.is_object()) throw Error(where + ": expected an object");
+    forEachObject(j, "checks", path, [&](const json& c, const std::string& where) {
         checks.push_back({text(c, "name", where, true), number(c, "weight", 1.0, where), stringList(c, "functions", where)});
-    }
+    });
     return checks;
 }
 
 std::vector<StageHint> readHints(const json& j, const StageManifest& m, const std::string& path) {
     std::vector<StageHint> hints;
-    if (!j.contains("hints")) return hints;
-    if (!j.at("hints").is_array()) throw Error(path + ": hints: expected an array");
-    for (std::size_t i = 0; i < j.at("hints").size(); ++i) {
-        const json& h = j.at("hints")[i];
-        const std::string where = path + ": hints[" + std::to_string(i) + "]";
-        if (!h.is_object()) throw Error(where + ": expected an object");
+    forEachObject(j, "hints", path, [&](const json& h, const std::string& where) {
         StageHint hint{stringList(h, "failed", where), stringList(h, "hints", where)};
         for (const std::string& name : hint.failed) {
             bool known = false;
@@ -148,7 +146,7 @@ std::vector<StageHint> readHints(const json& j, const StageManifest& m, const st
         }
         std::sort(hint.failed.begin(), hint.failed.end());
         hints.push_back(hint);
-    }
+    });
     return hints;
 }
 

@@ -10,6 +10,10 @@
 
 #include "support/gl_fixture.h"
 #include "voxlab/shader.h"
+#include "voxlab/scene.h"
+#include "voxlab/render_engine.h"
+#include "voxlab/phantoms.h"
+#include "voxlab/renderer.h"
 
 namespace voxlab::testing {
 namespace {
@@ -88,6 +92,43 @@ TEST(ShaderLibrary, ImplementationRootComesFirstAndEachFileOnce) {
     for (const std::string& f : s.files) count += f.find("voxlab/ray.glsl") != std::string::npos;
     EXPECT_EQ(count, 1);
     EXPECT_EQ(s.text.rfind("#version 330 core", 0), 0u);
+    fs::remove_all(root);
+}
+
+// A ray-value stage has no entry shader file: RayValueRenderer makes it
+// from shaders/renderers/ray_value.frag.in, and the engine adds it to its
+// library. The generated shader includes the implementation's stage file
+// (so a student's mistake is named in their file), and a name added as
+// generated resolves before the search path.
+TEST_F(GlTest, ARayValueStagesEntryShaderIsMadeFromTheTemplate) {
+    const fs::path root = makeImplementation("minip", "minip.glsl",
+                                             "float minip_ray(Ray ray) {\n    return undefined_thing;\n}\n");
+    const Volume volume = makePhantom("phantom:sphere:16");  // outlives the engine, which keeps its address
+    RenderEngine student(root.string());
+    student.setVolume(volume);
+    Scene scene;
+    scene.renderer = "minip";
+    scene.width = scene.height = 16;
+    try {
+        student.renderOffscreen(scene);
+        FAIL() << "the generated entry shader did not include the broken minip.glsl";
+    } catch (const ShaderError& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find("minip.glsl:2"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("undefined_thing"), std::string::npos) << msg;
+    }
+    const auto generated = rendererRegistry().get("minip").generatedShaders();
+    ASSERT_EQ(generated.size(), 1u);
+    const std::string& text = generated.at("renderers/minip.frag");
+    EXPECT_EQ(text.rfind("#version 330 core", 0), 0u);
+    EXPECT_NE(text.find("#include \"minip/minip.glsl\""), std::string::npos) << text;
+    EXPECT_NE(text.find("minip_ray(ray)"), std::string::npos) << text;
+    EXPECT_EQ(text.find("STAGE_NAME"), std::string::npos) << text;
+    ShaderLibrary lib = ShaderLibrary::forImplementation(root.string());
+    lib.addGenerated("renderers/minip.frag", text);
+    EXPECT_EQ(lib.resolve("renderers/minip.frag"), "generated:renderers/minip.frag");
+    const PreprocessedShader s = lib.preprocess("renderers/minip.frag");
+    EXPECT_NE(s.text.find("return undefined_thing;"), std::string::npos);
     fs::remove_all(root);
 }
 

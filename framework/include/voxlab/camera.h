@@ -86,4 +86,10 @@ struct Camera {
 bool clipRayToBox(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& lo, const glm::dvec3& hi,
                   double* t0, double* t1);
 
+// Keeps the part of [*t0, *t1] where dot(p - point, normal) >= 0 (a ray
+// parallel to the plane is kept whole or not at all). Returns whether any
+// of the ray is left.
+bool clipToHalfSpace(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& point,
+                     const glm::dvec3& normal, double* t0, double* t1);
+
 }  // namespace voxlab

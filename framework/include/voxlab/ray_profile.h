@@ -32,6 +32,7 @@
 
 #include <glm/glm.hpp>
 
+#include "voxlab/renderer.h"
 #include "voxlab/scene.h"
 #include "voxlab/volume.h"
 
@@ -63,6 +64,7 @@ struct RayProfile {
     double stepUnits = 0.0;           // the scene's step, in units of the smallest spacing
     std::vector<RaySample> samples;   // every sample the ray would take, in order (also those after a stop)
     std::string renderer;
+    ProfileModel model = ProfileModel::None;  // the renderer's (Renderer::profileModel)
     bool composites = false;          // classified/accumulated hold compositing (composite)
     bool modelled = false;            // `result` is what the renderer computes
     int stoppedAt = -1;               // index of the last sample used; -1: all of them

@@ -11,6 +11,7 @@
 // so no linker can drop one and the order in `voxlab list` is deliberate.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,6 +28,12 @@ struct Camera;
 class Volume;
 
 enum class ParameterType { Float, Int, Bool };
+
+// How the CPU ray profile (ray_profile.h) follows this renderer's rays: the
+// running maximum, minimum or mean, the first sample at or above
+// `threshold`, the first crossing of `isovalue` refined by bisection,
+// front-to-back compositing, or not at all (the samples' values only).
+enum class ProfileModel { None, Maximum, Minimum, Mean, FirstHit, Isosurface, Composite };
 
 // One declared parameter. The command line (--param NAME=VALUE), scene files
 // ("parameters": {...}) and the viewer's panels all read these.
@@ -80,6 +87,17 @@ public:
     std::vector<ParameterSpec> parametersFor(glm::dvec2 dataRange) const;
     // The entry fragment shader, found on the shader search path.
     virtual std::string fragmentShader() const { return "renderers/" + id() + ".frag"; }
+    // The ray profile's model of this renderer's rays.
+    virtual ProfileModel profileModel() const { return ProfileModel::None; }
+    // Clipping of a profile's ray beyond the box, the roi and the cutting
+    // plane (slab_mip: to its slab); `forward` is the camera's view
+    // direction. Returns whether any of [*t0, *t1] is left.
+    virtual bool clipProfileRay(const Volume& volume, const glm::dvec3& forward, const ParameterValues& values,
+                                const glm::dvec3& origin, const glm::dvec3& dir, double* t0, double* t1) const;
+    // Shaders the renderer makes itself (name -> GLSL text), added to the
+    // engine's shader library ahead of the search path: a ray-value stage's
+    // entry shader, made from a template (RayValueRenderer).
+    virtual std::map<std::string, std::string> generatedShaders() const { return {}; }
 
     // Image-order renderers (ray casters) run their fragment shader once per
     // pixel over a full-screen triangle. Object-order renderers (texture
@@ -121,9 +139,9 @@ public:
 
 class RendererRegistry {
 public:
-    template <class T>
-    void add() {
-        renderers_.push_back(std::make_unique<T>());
+    template <class T, class... Args>
+    void add(Args&&... args) {
+        renderers_.push_back(std::make_unique<T>(std::forward<Args>(args)...));
     }
     const Renderer* find(const std::string& id) const;
     // Throws voxlab::Error("unknown renderer 'x' (available: slicer, mip)").

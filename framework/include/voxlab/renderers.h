@@ -18,18 +18,31 @@ class MipRenderer final : public Renderer {
 public:
     std::string id() const override;
     std::string description() const override;
+    ProfileModel profileModel() const override { return ProfileModel::Maximum; }
 };
 
-class MinipRenderer final : public Renderer {
+// The renderer of a ray-value stage: a stage whose function
+// `float <stage>_ray(Ray ray)` (in <stage>/<stage>.glsl) returns one value
+// per ray in data units, shown through the window or the transfer function
+// (MinIP, the average, ...). Its entry shader is made from
+// shaders/renderers/ray_value.frag.in with the stage's name filled in, and
+// its parameters become uniforms u_NAME; so adding such a stage takes its
+// folder and one line in renderer_registry.cpp, e.g.
+//   r.add<RayValueRenderer>("minip", "minimum intensity projection: ...", ProfileModel::Minimum);
+class RayValueRenderer final : public Renderer {
 public:
-    std::string id() const override;
-    std::string description() const override;
-};
+    RayValueRenderer(std::string stage, std::string description, ProfileModel profile = ProfileModel::None,
+                     std::vector<ParameterSpec> parameters = {});
+    std::string id() const override { return stage_; }
+    std::string description() const override { return description_; }
+    std::vector<ParameterSpec> parameters() const override { return parameters_; }
+    ProfileModel profileModel() const override { return profile_; }
+    std::map<std::string, std::string> generatedShaders() const override;
 
-class AverageRenderer final : public Renderer {
-public:
-    std::string id() const override;
-    std::string description() const override;
+private:
+    std::string stage_, description_;
+    ProfileModel profile_;
+    std::vector<ParameterSpec> parameters_;
 };
 
 class FirstHitRenderer final : public Renderer {
@@ -38,6 +51,7 @@ public:
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
     EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
+    ProfileModel profileModel() const override { return ProfileModel::FirstHit; }
 };
 
 class SlabMipRenderer final : public Renderer {
@@ -45,6 +59,9 @@ public:
     std::string id() const override;
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
+    ProfileModel profileModel() const override { return ProfileModel::Maximum; }
+    bool clipProfileRay(const Volume& volume, const glm::dvec3& forward, const ParameterValues& values,
+                        const glm::dvec3& origin, const glm::dvec3& dir, double* t0, double* t1) const override;
 };
 
 class CompositeRenderer final : public Renderer {
@@ -54,6 +71,7 @@ public:
     std::vector<ParameterSpec> parameters() const override;
     bool needsTransferFunction() const override { return true; }
     EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
+    ProfileModel profileModel() const override { return ProfileModel::Composite; }
 };
 
 class IsoRenderer final : public Renderer {
@@ -62,6 +80,7 @@ public:
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
     EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
+    ProfileModel profileModel() const override { return ProfileModel::Isosurface; }
 };
 
 class Tf2dRenderer final : public Renderer {

@@ -59,14 +59,22 @@ public:
     static ShaderLibrary forImplementation(const std::string& implementationRoot);
 
     const std::vector<std::string>& searchPath() const { return searchPath_; }
+    // A shader made in memory (a renderer's generated entry shader, see
+    // Renderer::generatedShaders): `name` resolves to it before the search
+    // path, and compile errors name it "generated:NAME".
+    void addGenerated(const std::string& name, const std::string& text);
     // Absolute path of `name`, first match on the search path; throws
     // ShaderError when absent, when `name` is absolute or has a ".." part,
     // or when the file found lies outside its folder through a link.
     std::string resolve(const std::string& name, const std::string& includedFrom = "") const;
     PreprocessedShader preprocess(const std::string& name, const ShaderConstants& constants = {}) const;
 
+    // The text of a generated shader, by the path resolve() gave it.
+    const std::string* generatedText(const std::string& path) const;
+
 private:
     std::vector<std::string> searchPath_;
+    std::map<std::string, std::string> generated_;  // "generated:NAME" -> text
 };
 
 class ShaderProgram {

@@ -80,7 +80,8 @@ struct Preprocessor {
         const int fileId = int(out.files.size());
         out.files.push_back(displayPath(path));
 
-        std::istringstream in(readText(path));
+        const std::string* generated = lib.generatedText(path);
+        std::istringstream in(generated ? *generated : readText(path));
         std::string line;
         int lineNo = 0;
         if (!isEntry) out.text += lineDirective(fileId, 1);
@@ -202,9 +203,20 @@ std::string confinedPath(const std::string& dir, const std::string& path) {
 
 }  // namespace
 
+void ShaderLibrary::addGenerated(const std::string& name, const std::string& text) {
+    checkIncludeName(name, "");
+    generated_["generated:" + name] = text;
+}
+
+const std::string* ShaderLibrary::generatedText(const std::string& path) const {
+    const auto found = generated_.find(path);
+    return found == generated_.end() ? nullptr : &found->second;
+}
+
 std::string ShaderLibrary::resolve(const std::string& name, const std::string& includedFrom) const {
     const std::string where = includedFrom.empty() ? "" : includedFrom + ": ";
     checkIncludeName(name, where);
+    if (generated_.count("generated:" + name)) return "generated:" + name;
     // A stage the first folder (the implementation) has is its alone: an
     // empty or incomplete stage folder does not borrow a later folder's files.
     const std::string top = name.substr(0, name.find('/'));

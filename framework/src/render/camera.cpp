@@ -156,4 +156,15 @@ glm::mat4 Camera::clipFromWorld() const {
     return glm::mat4(m);
 }
 
+// Keeps the part of [*t0, *t1] where dot(p - point, normal) >= 0.
+bool clipToHalfSpace(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& point,
+                     const glm::dvec3& normal, double* t0, double* t1) {
+    const double along = glm::dot(dir, normal), start = glm::dot(origin - point, normal);
+    if (std::abs(along) < 1e-12) return start >= 0.0 && *t1 > *t0;
+    const double t = -start / along;  // where the ray crosses the plane
+    if (along > 0.0) *t0 = std::max(*t0, t);
+    else *t1 = std::min(*t1, t);
+    return *t1 > *t0;
+}
+
 }  // namespace voxlab

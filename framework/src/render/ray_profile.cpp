@@ -208,17 +208,6 @@ struct Lighting {
     }
 };
 
-// Keeps the part of [*t0, *t1] where dot(p - point, normal) >= 0.
-bool clipToHalfSpace(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& point,
-                     const glm::dvec3& normal, double* t0, double* t1) {
-    const double along = glm::dot(dir, normal), start = glm::dot(origin - point, normal);
-    if (std::abs(along) < 1e-12) return start >= 0.0 && *t1 > *t0;
-    const double t = -start / along;  // where the ray crosses the plane
-    if (along > 0.0) *t0 = std::max(*t0, t);
-    else *t1 = std::min(*t1, t);
-    return *t1 > *t0;
-}
-
 // The GPU's per-pixel random number for jitter (shaders/voxlab/ray.glsl,
 // pixel_random): an integer hash of the fragment's integer coordinates,
 // whose rows count from the bottom. A profile must use the very same number
@@ -254,12 +243,6 @@ double depthGrey(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dve
     return std::clamp(1.0 - (t - tNear) / (2.0 * radius), 0.0, 1.0);
 }
 
-bool modelledRenderer(const std::string& id) {
-    for (const char* known : {"composite", "mip", "slab_mip", "minip", "average", "firsthit", "iso"})
-        if (id == known) return true;
-    return false;
-}
-
 void addNote(RayProfile& profile, const std::string& text) {
     profile.note += (profile.note.empty() ? "" : "; ") + text;
 }
@@ -283,7 +266,8 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
     profile.renderer = renderer.id();
     profile.stepUnits = scene.step;
     profile.step = scene.step * volume.minSpacing();
-    const bool modelled = modelledRenderer(profile.renderer);
+    profile.model = renderer.profileModel();
+    const bool modelled = profile.model != ProfileModel::None;
 
     // The ray through the pixel's centre.
     const Camera cam = Camera::make(scene.camera, volume.extent(), scene.width, scene.height);
@@ -309,22 +293,14 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
             addNote(profile, "cutting plane: only " + profile.renderer + "'s half-space is followed, not " +
                                  cut.otherRenderer + "'s");
     }
-    if (hits && profile.renderer == "slab_mip") {
-        // The slab: |dot(p - c, forward)| <= thickness/2 around the box centre
-        // moved by `offset` along the view (both in smallest spacings).
-        const glm::dvec3 n = cam.forward;
-        const glm::dvec3 centre = 0.5 * volume.extent() + param("offset") * volume.minSpacing() * n;
-        const double h = 0.5 * param("thickness") * volume.minSpacing();
-        hits = clipToHalfSpace(origin, dir, centre - h * n, n, &t0, &t1) &&
-               clipToHalfSpace(origin, dir, centre + h * n, -n, &t0, &t1);
-    }
+    if (hits) hits = renderer.clipProfileRay(volume, cam.forward, values, origin, dir, &t0, &t1);
     profile.hitsVolume = hits;
     if (!hits) {
         profile.why = "the ray misses the volume";
         profile.modelled = modelled;
         return profile;
     }
-    if (profile.renderer == "composite" && param("jitter") != 0.0)
+    if (values.count("jitter") && param("jitter") != 0.0)
         t0 += (pixelRandom(px, py, scene.height) - 0.5) * profile.step;  // the same start as the GPU's
     profile.tEntry = t0, profile.tExit = t1;
 
@@ -369,7 +345,7 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
         for (int k = from; k < count; ++k) profile.samples[k].accumulated = acc;
     };
 
-    if (profile.renderer == "composite") {
+    if (profile.model == ProfileModel::Composite) {
         profile.composites = true;
         const bool preclassify = param("preclassify") != 0.0, backToFront = param("back_to_front") != 0.0;
         profile.earlyTermination = backToFront ? 1.0 : param("early_termination");
@@ -421,14 +397,14 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
 
     // The projection renderers: each sample alone, and the running result,
     // shown the way the pixel would show it.
-    const bool isProjection = profile.renderer != "iso";
+    const bool isProjection = profile.model != ProfileModel::Isosurface;
     if (isProjection)
         for (RaySample& s : profile.samples) s.classified = glm::vec4(displayColour(s.value, window, tfp));
     auto shown = [&](double value) { return glm::vec4(premultiply(displayColour(value, window, tfp))); };
 
-    if (profile.renderer == "mip" || profile.renderer == "slab_mip" || profile.renderer == "minip" ||
-        profile.renderer == "average") {
-        const bool isMin = profile.renderer == "minip", isMean = profile.renderer == "average";
+    if (profile.model == ProfileModel::Maximum || profile.model == ProfileModel::Minimum ||
+        profile.model == ProfileModel::Mean) {
+        const bool isMin = profile.model == ProfileModel::Minimum, isMean = profile.model == ProfileModel::Mean;
         for (int m = 0; m < count; ++m) {
             RaySample& s = profile.samples[m];
             s.accumulated = shown(isMean ? s.runningMean : isMin ? s.runningMin : s.runningMax);
@@ -446,7 +422,7 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
     }
 
     const bool depth = param("depth") != 0.0;
-    if (profile.renderer == "firsthit") {
+    if (profile.model == ProfileModel::FirstHit) {
         profile.threshold = param("threshold"), profile.hasThreshold = true;
         for (int m = 0; m < count && profile.stoppedAt < 0; ++m) {
             const RaySample& s = profile.samples[m];

@@ -67,6 +67,9 @@ std::string checkedImplementationRoot(const std::string& root) {
 RenderEngine::RenderEngine(std::string implementationRoot)
     : implementationRoot_(checkedImplementationRoot(implementationRoot)),
       library_(ShaderLibrary::forImplementation(implementationRoot_)) {
+    // Entry shaders the renderers make themselves (ray-value stages).
+    for (const auto& renderer : rendererRegistry().all())
+        for (const auto& [name, text] : renderer->generatedShaders()) library_.addGenerated(name, text);
     glGenVertexArrays(1, &vao_);  // core profile: drawing needs a bound VAO
     glGenTextures(1, &volumeTexture_);
     glGenTextures(1, &gradientTexture_);

@@ -1,6 +1,7 @@
 // voxlab: the explicit list of built-in renderers, in teaching order. A new
 // renderer is added here, in one line; nothing registers itself behind the
-// linker's back.
+// linker's back. A ray-value stage (one value per ray, <stage>_ray()) needs
+// no class and no entry shader: RayValueRenderer is its line.
 #include "voxlab/renderers.h"
 
 namespace voxlab {
@@ -10,8 +11,10 @@ const RendererRegistry& rendererRegistry() {
         RendererRegistry r;
         r.add<SlicerRenderer>();
         r.add<MipRenderer>();
-        r.add<MinipRenderer>();
-        r.add<AverageRenderer>();
+        r.add<RayValueRenderer>("minip", "minimum intensity projection: the smallest sample along each ray",
+                                ProfileModel::Minimum);
+        r.add<RayValueRenderer>("average", "average intensity projection: the mean sample along each ray, like an X-ray",
+                                ProfileModel::Mean);
         r.add<FirstHitRenderer>();
         r.add<SlabMipRenderer>();
         r.add<CompositeRenderer>();

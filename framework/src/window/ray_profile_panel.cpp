@@ -202,7 +202,7 @@ void RayProfilePanel(const char* label, const RayProfile& profile, const glm::dv
     // Layout, top to bottom: legend, value plot, opacity plot (composite),
     // two colour strips, the depth axis; a left margin for the y labels.
     const bool composites = profile.composites;
-    const bool strips = profile.renderer != "iso" && profile.modelled;
+    const bool strips = profile.model != ProfileModel::Isosurface && profile.modelled;
     const float left = origin.x + em * 3.6f, right = origin.x + canvasSize.x - em * 0.6f;
     const float stripHeight = em * 0.95f, gap = em * 0.6f, axisHeight = em * 2.4f, legendHeight = em * 1.5f;
     const float stripsHeight = strips ? 2.0f * stripHeight + 1.6f * gap : 0.0f;
@@ -249,12 +249,12 @@ void RayProfilePanel(const char* label, const RayProfile& profile, const glm::dv
             bool dashed;
         };
         std::vector<Entry> entries = {{kValueColour, "value", "value", false}};
-        if (profile.renderer == "minip") entries.push_back({kMinColour, "running min", "min", false});
-        else if (profile.renderer == "average") entries.push_back({kMeanColour, "running mean", "mean", false});
+        if (profile.model == ProfileModel::Minimum) entries.push_back({kMinColour, "running min", "min", false});
+        else if (profile.model == ProfileModel::Mean) entries.push_back({kMeanColour, "running mean", "mean", false});
         else entries.push_back({kMaxColour, "running max", "max", false});
         if (profile.hasThreshold)
-            entries.push_back({kThresholdColour, profile.renderer == "iso" ? "isovalue" : "threshold",
-                               profile.renderer == "iso" ? "iso" : "thresh.", true});
+            entries.push_back({kThresholdColour, profile.model == ProfileModel::Isosurface ? "isovalue" : "threshold",
+                               profile.model == ProfileModel::Isosurface ? "iso" : "thresh.", true});
         if (composites) {
             entries.push_back({kSampleOpacityColour, "sample opacity", "opacity", false});
             entries.push_back({kAccumulatedColour, "accumulated", "accum.", false});
@@ -327,9 +327,9 @@ void RayProfilePanel(const char* label, const RayProfile& profile, const glm::dv
     const float sampleWidth = (right - left) * float(profile.step / (tHi - tLo));
     if (profile.hasThreshold)
         dashedHorizontal(dl, valueBox.min.x, valueBox.max.x, valueY(profile.threshold), kThresholdColour, em * 0.4f);
-    if (profile.renderer == "minip")
+    if (profile.model == ProfileModel::Minimum)
         polyline(valueBox, kMinColour, 2.0f, [&](const RaySample& s) { return valueY(s.runningMin); });
-    else if (profile.renderer == "average")
+    else if (profile.model == ProfileModel::Mean)
         polyline(valueBox, kMeanColour, 2.0f, [&](const RaySample& s) { return valueY(s.runningMean); });
     else
         polyline(valueBox, kMaxColour, 2.0f, [&](const RaySample& s) { return valueY(s.runningMax); });
@@ -389,10 +389,10 @@ void RayProfilePanel(const char* label, const RayProfile& profile, const glm::dv
     if (profile.stoppedAt >= 0) {
         const float x = xOf(profile.samples[profile.stoppedAt].t + 0.5 * profile.step);
         if (x < right) dl->AddRectFilled(ImVec2(x, valueBox.min.y), ImVec2(right, bottom), IM_COL32(0, 0, 0, 120));
-        const float xs = xOf(profile.renderer == "iso" ? profile.hitT : profile.samples[profile.stoppedAt].t);
+        const float xs = xOf(profile.model == ProfileModel::Isosurface ? profile.hitT : profile.samples[profile.stoppedAt].t);
         dl->AddLine(ImVec2(xs, valueBox.min.y), ImVec2(xs, bottom), kStopColour, 2.0f);
     }
-    if (profile.chosen >= 0 && profile.renderer != "firsthit" && profile.renderer != "iso") {
+    if (profile.chosen >= 0 && profile.model != ProfileModel::FirstHit && profile.model != ProfileModel::Isosurface) {
         const RaySample& s = profile.samples[profile.chosen];
         dl->AddCircle(ImVec2(xOf(s.t), valueY(s.value)), em * 0.4f, kMaxColour, 0, 2.0f);
     }
@@ -424,7 +424,7 @@ void RayProfilePanel(const char* label, const RayProfile& profile, const glm::dv
         ImGui::Text("t %.4g   at (%.4g, %.4g, %.4g)", s.t, s.position.x, s.position.y, s.position.z);
         ImGui::Text("value %.5g", s.value);
         ImGui::TextDisabled("running max %.5g  min %.5g  mean %.5g", s.runningMax, s.runningMin, s.runningMean);
-        if (profile.modelled && profile.renderer != "iso") {
+        if (profile.modelled && profile.model != ProfileModel::Isosurface) {
             const glm::vec4& c = s.classified;
             const glm::vec4& a = s.accumulated;
             if (composites) {

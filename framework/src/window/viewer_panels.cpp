@@ -214,7 +214,8 @@ void transferFunctionPanel(State& s) {
                             ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(460 * s.contentScale, 320 * s.contentScale), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("transfer function", &s.showTransferFunction)) return ImGui::End();
-    if (s.scene.renderer == "tf2d") {
+    const Renderer* renderer = rendererRegistry().find(s.scene.renderer);
+    if (renderer && renderer->needsTransferFunction2D()) {  // asked of the renderer, not its name
         if (!s.histogram2D) s.histogram2D = histogram2D(volume);
         if (!s.scene.transferFunction2D) s.scene.transferFunction2D = startingTransferFunction2D(s);
         if (TransferFunction2DEditor("##tf2d", &*s.scene.transferFunction2D, *s.histogram2D, &s.selectedWidget))

@@ -5,7 +5,7 @@
 #
 # The class is synthetic but realistic: the reference solution, the pristine
 # starter code, and eight students each with a few of the mutants of
-# tests/mutants/mutants.json (realistic bugs) in otherwise correct work, two
+# reference/<stage>/mutants.json (realistic bugs) in otherwise correct work, two
 # of them with unfinished stages left as stubs. Prints the wall time and the
 # gradebook. JOBS defaults to the CPU count.
 set -euo pipefail
@@ -19,7 +19,9 @@ mkdir -p "$class"
 /usr/bin/env python3 - "$root" "$class" <<'PY'
 import json, os, random, shutil, sys
 root, class_dir = sys.argv[1], sys.argv[2]
-mutants = json.load(open(os.path.join(root, "tests/mutants/mutants.json")))["mutants"]
+mutants = [m for stage in sorted(os.listdir(os.path.join(root, "reference")))
+           if os.path.exists(os.path.join(root, "reference", stage, "mutants.json"))
+           for m in json.load(open(os.path.join(root, "reference", stage, "mutants.json"))).get("mutants", [])]
 rng = random.Random(2026)
 def student(name, bugs=(), stubs=()):
     folder = os.path.join(class_dir, name)

@@ -1,4 +1,4 @@
-// The mutant suite (tests/mutants/mutants.json): realistic student bugs,
+// The mutant suite (reference/<stage>/mutants.json, tests/mutants/README.md): realistic student bugs,
 // each a one-line change to a copy of reference/. The grader must fail
 // every one of them in its stage, while the reference passes (test_grader).
 // Also the calibration the tolerances rest on: the reference rendered
@@ -39,13 +39,22 @@ struct Mutant {
     bool gross = false;
 };
 
+// Every stage's reference/<stage>/mutants.json (tests/mutants/README.md), in
+// teaching order; a stage's file names only that stage's mutants.
 std::vector<Mutant> loadList(const char* key) {
-    const json j = json::parse(readFile(kSource / "tests/mutants/mutants.json"));
     std::vector<Mutant> mutants;
-    for (const json& m : j.value(key, json::array()))
-        mutants.push_back({m.at("stage"), m.at("name"), m.at("file"), m.at("find"), m.at("replace"),
-                           m.value("bug", m.value("about", "")), m.value("function", ""), m.value("hint", ""),
-                           m.value("gross", false)});
+    for (const StageManifest& stage : stageManifests((kSource / "reference").string())) {
+        const fs::path file = kSource / "reference" / stage.stage / "mutants.json";
+        if (!fs::exists(file)) continue;
+        const json j = json::parse(readFile(file));
+        for (const json& m : j.value(key, json::array())) {
+            mutants.push_back({m.at("stage"), m.at("name"), m.at("file"), m.at("find"), m.at("replace"),
+                               m.value("bug", m.value("about", "")), m.value("function", ""), m.value("hint", ""),
+                               m.value("gross", false)});
+            if (mutants.back().stage != stage.stage)
+                throw std::runtime_error(file.string() + ": " + mutants.back().name + " is a mutant of another stage");
+        }
+    }
     return mutants;
 }
 
@@ -190,7 +199,7 @@ TEST(MutantSuite, TheGraderFailsEveryMutant) {
 // Correct solutions written the ways students write them keep full marks.
 TEST(MutantSuite, EveryCorrectAlternativeKeepsFullMarks) {
     const std::vector<Mutant> alternatives = loadAlternatives();
-    ASSERT_GE(alternatives.size(), 20u) << "tests/mutants/mutants.json needs its correct alternatives";
+    ASSERT_GE(alternatives.size(), 20u) << "the stages' mutants.json need their correct alternatives";
     const fs::path root = scratch("alternatives");
     const std::vector<json> reports = gradeVariants(alternatives, root);
     ASSERT_EQ(reports.size(), alternatives.size());

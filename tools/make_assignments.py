@@ -13,8 +13,9 @@ to assignments/ path for path and replaces each such block with a loud stub:
 Blocks between `// BEGIN WORKED EXAMPLE` and `// END WORKED EXAMPLE` are
 kept (the slicer is a worked example). Grading scenes marked "hidden" in a
 stage's grading.json are left out of its generated manifest, and their scene
-files are not copied: they are graded but never shipped. Every other file is
-copied as it is.
+files are not copied: they are graded but never shipped. A stage's
+mutants.json (its mutant suite, which holds solution text) is never copied.
+Every other file is copied as it is.
 assignments/README.md is not generated.
 
     python3 tools/make_assignments.py           # (re)writes assignments/
@@ -33,6 +34,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 REFERENCE = os.path.join(ROOT, "reference")
 ASSIGNMENTS = os.path.join(ROOT, "assignments")
 KEEP = {"README.md"}  # files of assignments/ that the tool does not own
+NEVER_SHIPPED = {"mutants.json"}  # a stage's mutant suite: solution text
 
 BEGIN = re.compile(r"^(\s*)// BEGIN SOLUTION\s*$")
 END = re.compile(r"^\s*// END SOLUTION\s*$")
@@ -124,6 +126,8 @@ def expected_files():
     files, hidden = {}, set()
     for folder, _, names in os.walk(REFERENCE):
         for name in sorted(names):
+            if name in NEVER_SHIPPED:
+                continue
             full = os.path.join(folder, name)
             rel = os.path.relpath(full, REFERENCE)
             with open(full, encoding="utf-8") as f:

@@ -71,7 +71,14 @@ cp -r "$root/tests/golden/scenes" "$out/tests/golden/"
 LP_NUM_THREADS="${LP_NUM_THREADS:-2}" "$build/bin/voxlab" grade --render-expected "$out/expected" --quiet >/dev/null
 rm -f "$out/expected/reference_stages.so"
 
-# No solution may leak: no markers, and no non-trivial solution line.
+# No solution may leak: no mutant suite (its substitutions quote the solution),
+# no markers, and no non-trivial solution line.
+if find "$out" -name mutants.json | grep -q .; then
+  echo "make_student_release: a stage's mutants.json was shipped:" >&2
+  find "$out" -name mutants.json >&2
+  exit 1
+fi
+
 if grep -rl "BEGIN SOLUTION" "$out" >/dev/null; then
   echo "make_student_release: a solution marker was shipped:" >&2
   grep -rl "BEGIN SOLUTION" "$out" >&2

@@ -29,7 +29,11 @@ def main():
     if len(sys.argv) != 2:
         sys.exit("usage: mutant_hints.py SIGNATURES.json (see the top of this file)")
     signatures = json.load(open(sys.argv[1], encoding="utf-8"))["signatures"]
-    mutants = json.load(open(os.path.join(ROOT, "tests/mutants/mutants.json"), encoding="utf-8"))["mutants"]
+    mutants = []
+    for stage in sorted(os.listdir(os.path.join(ROOT, "reference"))):
+        path = os.path.join(ROOT, "reference", stage, "mutants.json")
+        if os.path.exists(path):
+            mutants += json.load(open(path, encoding="utf-8")).get("mutants", [])
     hint_of = {m["name"]: m.get("hint", "") for m in mutants}
     per_stage = {}
     for s in signatures:

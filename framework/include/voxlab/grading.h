@@ -74,7 +74,7 @@ inline constexpr double kAllPassShare = 0.2;
 // The default tolerances, in one place. Calibrated so that the reference
 // passes against itself rendered another way (hardware instead of explicit
 // trilinear filtering, another llvmpipe thread count), and every mutant in
-// tests/mutants/ fails (see tests/test_grader_mutants.cpp).
+// reference/<stage>/mutants.json fails (see tests/test_grader_mutants.cpp).
 // The cluster bound: the reference rendered another way (the other
 // filtering path, another thread count) has no group of more than 1 pixel
 // off by more than 8 levels, nor of 2 off by more than 4
@@ -105,7 +105,7 @@ struct GradedCheck {
 };
 
 // A known mistake's signature: the items a stage fails (sorted names) and
-// what that suggests, in the student's terms (from tests/mutants/, written
+// what that suggests, in the student's terms (from reference/<stage>/mutants.json, written
 // into the manifest by tools/mutant_hints.py). Never solution code.
 struct StageHint {
     std::vector<std::string> failed;

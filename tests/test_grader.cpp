@@ -382,14 +382,16 @@ TEST(StageManifests, EveryStageWithAManifestIsGradedInItsOrder) {
     fs::copy(kSource / "reference", root, fs::copy_options::recursive);
     const std::vector<std::string> before = gradedStages(root.string());
     EXPECT_EQ(before.front(), "slicer");
-    EXPECT_EQ(before.size(), 15u);
+    std::size_t folders = 0;  // counted here, from the folders themselves
+    for (const auto& entry : fs::directory_iterator(root)) folders += fs::exists(entry.path() / "grading.json");
+    EXPECT_EQ(before.size(), folders);
     fs::copy(root / "mip", root / "mystage", fs::copy_options::recursive);
     std::string manifest = readFile(root / "mystage/grading.json");
     const std::string three = "\"order\": 3,", ninetyNine = "\"order\": 99,";
     manifest.replace(manifest.find(three), three.size(), ninetyNine);
     std::ofstream(root / "mystage/grading.json") << manifest;
     std::vector<std::string> after = gradedStages(root.string());
-    ASSERT_EQ(after.size(), 16u);
+    ASSERT_EQ(after.size(), folders + 1);
     EXPECT_EQ(after.back(), "mystage");
     manifest.replace(manifest.find(ninetyNine), ninetyNine.size(), "");
     std::ofstream(root / "mystage/grading.json") << manifest;

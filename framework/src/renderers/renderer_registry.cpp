@@ -17,6 +17,10 @@ const RendererRegistry& rendererRegistry() {
                                 ProfileModel::Mean);
         r.add<FirstHitRenderer>();
         r.add<SlabMipRenderer>();
+        r.add<RayValueRenderer>("attenuated_mip", "attenuated MIP: each sample dimmed by the intensity in front of it",
+                                ProfileModel::None,
+                                std::vector<ParameterSpec>{{"attenuation", ParameterType::Float, 0.0, 10.0, 0.05,
+                                                            "dimming per unit length of normalised intensity crossed"}});
         r.add<CompositeRenderer>();
         r.add<IsoRenderer>();
         r.add<Tf2dRenderer>();

@@ -1,0 +1,34 @@
+// Student starter code, generated from reference/attenuated_mip/attenuated_mip.glsl by tools/make_assignments.py.
+// Implement the functions marked TODO; everything else is given.
+// Stage: attenuated maximum intensity projection.
+//
+// A MIP shows the brightest sample along a ray wherever it lies, so a
+// bright structure at the back shows through everything in front of it:
+// MIP gives no depth. Attenuated MIP (offered by napari, for example) dims
+// each sample by how much bright material the ray has already crossed, so
+// what lies in front wins over what lies behind:
+//
+//     n_k = (f_k - lo) / (hi - lo)                  the sample normalised to
+//                                                   the volume's range [lo, hi]
+//     D_m = sum over k < m of n_k * u_step_units    the "optical depth" in
+//                                                   front of sample m
+//     I   = max over m of  lo + (f_m - lo) * exp(-u_attenuation * D_m)
+//
+// lo, hi = u_value_range. D_m counts the samples *before* m, in units of
+// the smallest spacing (u_step_units), so the image does not change with
+// the step. With u_attenuation = 0 this is the MIP.
+#ifndef VOXLAB_STAGE_ATTENUATED_MIP_GLSL
+#define VOXLAB_STAGE_ATTENUATED_MIP_GLSL
+
+#include "voxlab/ray.glsl"
+
+uniform float u_attenuation;  // per unit length of normalised intensity
+
+// Returns the largest attenuated sample value along the ray (data units).
+float attenuated_mip_ray(Ray ray) {
+    // TODO: implement this function (see the comment above it).
+    not_implemented();
+    return 0.0;
+}
+
+#endif

@@ -31,7 +31,7 @@ using nlohmann::json;
 
 const fs::path kSource = VOXLAB_SOURCE_DIR;
 
-GraderOptions gradingOptions(const fs::path& root);
+GraderOptions gradingOptions(const fs::path& root, const fs::path& reference = kSource / "reference");
 
 // A mutant (a bug) or a correct alternative (about: how the student wrote it).
 struct Mutant {
@@ -63,13 +63,14 @@ std::vector<Mutant> loadAlternatives() { return loadList("alternatives"); }
 
 // Each mutant or alternative applied to a copy of its stage's folder, all
 // graded in one grading run.
-std::vector<json> gradeVariants(const std::vector<Mutant>& variants, const fs::path& root) {
+std::vector<json> gradeVariants(const std::vector<Mutant>& variants, const fs::path& root,
+                                const fs::path& reference = kSource / "reference") {
     std::vector<Submission> submissions;
     for (const Mutant& m : variants) {
         const fs::path folder = root / "submissions" / m.name;
         // Only the stage's folder: grading takes every other stage from the reference.
         fs::create_directories(folder);
-        fs::copy(kSource / "reference" / m.stage, folder / m.stage, fs::copy_options::recursive);
+        fs::copy(reference / m.stage, folder / m.stage, fs::copy_options::recursive);
         std::string text = readFile(folder / m.file);
         const std::size_t at = text.find(m.find);
         if (at == std::string::npos) throw std::runtime_error(m.name + ": the find text is not in " + m.file);
@@ -77,7 +78,7 @@ std::vector<json> gradeVariants(const std::vector<Mutant>& variants, const fs::p
         std::ofstream(folder / m.file) << text;
         submissions.push_back({m.name, folder.string(), (root / "reports" / m.name).string(), {m.stage}});
     }
-    return gradeSubmissions(submissions, gradingOptions(root));
+    return gradeSubmissions(submissions, gradingOptions(root, reference));
 }
 
 // The names of a stage's items that did not pass: the mutant's signature.
@@ -99,10 +100,10 @@ fs::path scratch(const std::string& name) {
 
 // Grading against the reference, expected outputs rendered into ROOT/expected
 // with one llvmpipe thread, two stages at once.
-GraderOptions gradingOptions(const fs::path& root) {
+GraderOptions gradingOptions(const fs::path& root, const fs::path& reference) {
     GraderOptions o;
     o.voxlab = VOXLAB_BINARY;
-    o.referenceRoot = (kSource / "reference").string();
+    o.referenceRoot = reference.string();
     o.expectedDir = (root / "expected").string();
     o.jobs = 2;
     o.renderThreads = 1;
@@ -209,6 +210,45 @@ TEST(MutantSuite, EveryCorrectAlternativeKeepsFullMarks) {
                                              << "): " << stage["message"];
         EXPECT_DOUBLE_EQ(stage["score"].get<double>(), stage["max_score"].get<double>()) << alternatives[i].name;
     }
+    fs::remove_all(root);
+}
+
+// The other filtering: every grading scene that filters in hardware is
+// graded with explicit trilinear interpolation instead (a copy of
+// reference/ with its scene files changed; the sampling stage's scenes,
+// which test explicit trilinear and nearest on purpose, stay as they are).
+// Every mutant still fails and loses at least 2 of 10, every alternative
+// keeps 10/10. Heavy (tests/CMakeLists.txt): another full suite.
+TEST(MutantSuite, TheOtherFilteringStillFailsEveryMutantAndPassesEveryAlternative) {
+    const fs::path root = scratch("other_filtering"), reference = root / "reference";
+    fs::copy(kSource / "reference", reference, fs::copy_options::recursive);
+    int flipped = 0;
+    for (const auto& entry : fs::recursive_directory_iterator(reference)) {
+        if (entry.path().extension() != ".json" || entry.path().parent_path().filename() != "scenes") continue;
+        std::string text = readFile(entry.path());
+        const std::string hardware = "\"interpolation\": \"hardware\"";
+        const std::size_t at = text.find(hardware);
+        if (at == std::string::npos) continue;
+        text.replace(at, hardware.size(), "\"interpolation\": \"trilinear\"");
+        std::ofstream(entry.path()) << text;
+        ++flipped;
+    }
+    EXPECT_GE(flipped, 40);
+    const std::vector<Mutant> mutants = loadMutants(), alternatives = loadAlternatives();
+    const std::vector<json> bugs = gradeVariants(mutants, root / "mutants", reference);
+    for (std::size_t i = 0; i < mutants.size(); ++i) {
+        const json& stage = bugs[i]["stages"].at(0);
+        EXPECT_EQ(stage["status"], "failed") << mutants[i].name << ": " << stage["message"];
+        EXPECT_LE(stage["score"].get<double>(), 0.8 * stage["max_score"].get<double>() + 1e-9) << mutants[i].name;
+        if (mutants[i].gross) EXPECT_LE(stage["score"].get<double>(), 0.2 * stage["max_score"].get<double>() + 1e-9);
+    }
+    const std::vector<json> fine = gradeVariants(alternatives, root / "alternatives", reference);
+    for (std::size_t i = 0; i < alternatives.size(); ++i) {
+        const json& stage = fine[i]["stages"].at(0);
+        EXPECT_EQ(stage["status"], "passed") << alternatives[i].name << ": " << stage["message"];
+    }
+    std::printf("%d scenes graded with explicit trilinear filtering: %zu mutants, %zu alternatives\n", flipped,
+                mutants.size(), alternatives.size());
     fs::remove_all(root);
 }
 

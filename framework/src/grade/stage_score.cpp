@@ -213,13 +213,15 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
     // only a stage with every item passed earns (grading.h).
     const double itemPoints = manifest.points * (1.0 - kAllPassShare);
     const double perWeight = weightSum > 0 ? itemPoints / weightSum : 0.0;
-    bool allPassed = weightSum > 0;
+    std::vector<std::string> failed;  // the items that did not pass, sorted: a mistake's signature
     for (json* items : {&scenes, &checks})
         for (json& e : *items) {
             e["max_score"] = perWeight * e["weight"].get<double>();
             e["score"] = e["max_score"].get<double>() * e["credit"].get<double>();
-            allPassed = allPassed && e["status"] == "passed";
+            if (e["status"] != "passed") failed.push_back(e["name"]);
         }
+    std::sort(failed.begin(), failed.end());
+    const bool allPassed = weightSum > 0 && failed.empty();
     stage["scenes"] = scenes;
     stage["checks"] = checks;
     const double bonusMax = weightSum > 0 ? manifest.points * kAllPassShare : 0.0;
@@ -240,13 +242,9 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
         stage["log"] = relativePaths(outcome.output, run);
     if (manifest.points == 0.0 && status == "passed") status = "example";
     if (status == "failed") {  // a known mistake's signature (grading.h): what it suggests
-        std::vector<std::string> failed;
-        for (const json* items : {&scenes, &checks})
-            for (const json& e : *items)
-                if (e["status"] != "passed") failed.push_back(e["name"]);
-        std::sort(failed.begin(), failed.end());
         const std::vector<std::string> hints = hintsFor(manifest, failed);
-        if (!hints.empty()) stage["hints"] = std::vector<std::string>(hints.begin(), hints.begin() + std::min<std::size_t>(3, hints.size()));
+        if (!hints.empty())
+            stage["hints"] = std::vector<std::string>(hints.begin(), hints.begin() + std::min<std::size_t>(3, hints.size()));
     }
     if (!manifest.requires.empty()) stage["requires"] = manifest.requires;
     stage["status"] = status;

@@ -47,6 +47,11 @@ class EngineDrawContext;
 // cutting plane (whose two halves are composed into one image).
 bool samplesCountable(const Scene& scene);
 
+// The implementation an engine runs when given none: the project's
+// reference/, or the starter code assignments/ in a student release (which
+// has no reference/).
+std::string defaultImplementationRoot();
+
 class RenderEngine {
 public:
     // `implementationRoot` is searched first for stage shaders: the project's

@@ -54,15 +54,18 @@ namespace {
 
 // A mistyped implementation folder must not quietly render the reference.
 std::string checkedImplementationRoot(const std::string& root) {
-    // A student release has no reference/: the starter code is the default.
-    if (root.empty())
-        return projectRoot() + (std::filesystem::is_directory(projectRoot() + "/reference") ? "/reference" : "/assignments");
+    if (root.empty()) return defaultImplementationRoot();
     if (!std::filesystem::is_directory(root))
         throw Error("implementation root '" + root + "' is not a folder");
     return root;
 }
 
 }  // namespace
+
+std::string defaultImplementationRoot() {
+    // A student release has no reference/: the starter code is the default.
+    return projectRoot() + (std::filesystem::is_directory(projectRoot() + "/reference") ? "/reference" : "/assignments");
+}
 
 RenderEngine::RenderEngine(std::string implementationRoot)
     : implementationRoot_(checkedImplementationRoot(implementationRoot)),

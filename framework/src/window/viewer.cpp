@@ -102,7 +102,7 @@ void handleKeys(State& s) {
         s.dirty = true;
     }
     if (pressed(GLFW_KEY_S)) s.split = SplitMode((int(s.split) + 1) % 3), s.dirty = true;
-    if (pressed(GLFW_KEY_I) && !hasReference()) s.say("a student release has no reference: split view (S) compares "
+    if (pressed(GLFW_KEY_I) && !s.hasReference) s.say("a student release has no reference: split view (S) compares "
                                                       "a grading scene with its expected image", 3.0);
     else if (pressed(GLFW_KEY_I)) {
         try {
@@ -182,6 +182,7 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
     State s;
     s.scene = initial;
     s.studentRoot = options.studentRoot.empty() ? projectRoot() + "/assignments" : options.studentRoot;
+    s.hasReference = defaultImplementationRoot() == projectRoot() + "/reference";
     auto volume = std::make_unique<Volume>(loadVolume(initial.dataset));
     GlfwWindow window(options.width, options.height, "voxlab");
     setImplementation(s.main, options.implementationRoot, *volume);

@@ -18,9 +18,7 @@ namespace voxlab::viewer {
 
 namespace fs = std::filesystem;
 
-bool hasReference() { return fs::is_directory(projectRoot() + "/reference"); }
-
-bool comparesWithExpected(const State& s) { return s.split != SplitMode::Off && !hasReference(); }
+bool comparesWithExpected(const State& s) { return s.split != SplitMode::Off && !s.hasReference; }
 
 namespace {
 

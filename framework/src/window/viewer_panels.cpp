@@ -78,7 +78,7 @@ bool rendererCombo(const char* label, std::string* id, bool allowSame) {
 // student side reads).
 void implementationSwitch(const char* label, State& s, Side& side) {
     int which = side.implementation.empty() ? 0 : 1;
-    if (!hasReference()) {  // a student release: the starter code is the only implementation
+    if (!s.hasReference) {  // a student release: the starter code is the only implementation
         ImGui::Text("%s your code (assignments/)", label);
         return;
     }
@@ -145,7 +145,7 @@ void techniquePanel(State& s) {
 
     sectionTitle("split view (S)");
     int split = int(s.split);
-    const char* modes = hasReference() ? "off\0student | reference\0difference\0"
+    const char* modes = s.hasReference ? "off\0student | reference\0difference\0"
                                        : "off\0yours | expected image\0difference\0";
     if (ImGui::Combo("mode", &split, modes)) s.split = SplitMode(split), s.dirty = true;
     if (comparesWithExpected(s)) {

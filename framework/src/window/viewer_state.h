@@ -70,6 +70,7 @@ struct State {
     SplitMode split = SplitMode::Off;
     float divider = 0.5f;           // fraction of the window's width
     ExpectedImage expected;         // a student release's right side
+    bool hasReference = true;       // reference/ exists (not a student release); set at start
 
     // Rendering.
     bool dirty = true;              // the scene changed: render again
@@ -131,7 +132,6 @@ void pickRayProfile(State& s, glm::ivec2 pixel);  // framebuffer pixel; opens th
 std::string timestampedScreenshotName();
 
 // viewer_expected.cpp
-bool hasReference();                      // reference/ exists (not a student release)
 bool comparesWithExpected(const State& s);  // split view without a reference
 void updateExpected(State& s);            // finds and loads the current scene's expected image
 

@@ -64,8 +64,8 @@ struct RayProfile {
     double stepUnits = 0.0;           // the scene's step, in units of the smallest spacing
     std::vector<RaySample> samples;   // every sample the ray would take, in order (also those after a stop)
     std::string renderer;
-    ProfileModel model = ProfileModel::None;  // the renderer's (Renderer::profileModel)
-    bool composites = false;          // classified/accumulated hold compositing (composite)
+    ProfileModel model = ProfileModel::None;  // the renderer's (Renderer::profileModel); Composite on a
+                                              // ray that hits: classified/accumulated hold compositing
     bool modelled = false;            // `result` is what the renderer computes
     int stoppedAt = -1;               // index of the last sample used; -1: all of them
     int chosen = -1;                  // the sample that gives the pixel its value (maximum, minimum, hit); -1: none

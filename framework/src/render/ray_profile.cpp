@@ -346,7 +346,6 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
     };
 
     if (profile.model == ProfileModel::Composite) {
-        profile.composites = true;
         const bool preclassify = param("preclassify") != 0.0, backToFront = param("back_to_front") != 0.0;
         profile.earlyTermination = backToFront ? 1.0 : param("early_termination");
         auto classifyVoxel = [&](glm::ivec3 ijk) { return glm::dvec4(tf->evaluate(reader.voxel(ijk))); };

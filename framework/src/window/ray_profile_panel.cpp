@@ -201,7 +201,7 @@ void RayProfilePanel(const char* label, const RayProfile& profile, const glm::dv
 
     // Layout, top to bottom: legend, value plot, opacity plot (composite),
     // two colour strips, the depth axis; a left margin for the y labels.
-    const bool composites = profile.composites;
+    const bool composites = profile.model == ProfileModel::Composite && profile.hitsVolume;
     const bool strips = profile.model != ProfileModel::Isosurface && profile.modelled;
     const float left = origin.x + em * 3.6f, right = origin.x + canvasSize.x - em * 0.6f;
     const float stripHeight = em * 0.95f, gap = em * 0.6f, axisHeight = em * 2.4f, legendHeight = em * 1.5f;

@@ -27,6 +27,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/error_of.h"
+#include "support/in_child.h"
 #include "voxlab/atomic_file.h"
 #include "voxlab/error.h"
 #include "voxlab/html_report.h"
@@ -153,38 +154,18 @@ protected:
 // The message of the voxlab::Error thrown by `f` in a forked child whose
 // files may not grow past `limitBytes`. SIGXFSZ is ignored there, so an
 // oversized write fails with EFBIG instead of killing the child. Returns
-// "no error" or "crashed" otherwise.
+// "no error" when nothing is thrown (messageInChild says the rest).
 std::string errorUnderFileSizeLimit(const std::function<void()>& f, rlim_t limitBytes) {
-    int pipeFds[2];
-    if (::pipe(pipeFds) != 0) return "pipe failed";
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-        ::close(pipeFds[0]);
-        std::signal(SIGXFSZ, SIG_IGN);
-        const struct rlimit limit = {limitBytes, limitBytes};
-        std::string message = "setrlimit failed";
-        if (::setrlimit(RLIMIT_FSIZE, &limit) == 0) {
-            try {
-                f();
-                message = "no error";
-            } catch (const Error& e) {
-                message = e.what();
-            } catch (const std::exception& e) {
-                message = std::string("not a voxlab::Error: ") + e.what();
-            }
-        }
-        const ssize_t ignored = ::write(pipeFds[1], message.data(), message.size());
-        (void)ignored;
-        ::_exit(0);
-    }
-    ::close(pipeFds[1]);
-    std::string message;
-    char buf[4096];
-    for (ssize_t n; (n = ::read(pipeFds[0], buf, sizeof buf)) > 0;) message.append(buf, std::size_t(n));
-    ::close(pipeFds[0]);
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? message : "crashed";
+    return messageInChild(
+        [&] {
+            std::signal(SIGXFSZ, SIG_IGN);
+            const struct rlimit limit = {limitBytes, limitBytes};
+            return ::setrlimit(RLIMIT_FSIZE, &limit) == 0;
+        },
+        [&] {
+            f();
+            return std::string("no error");
+        });
 }
 
 TEST_F(AtomicWrites, SuccessWritesTheFileAndNoTemporaries) {

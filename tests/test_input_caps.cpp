@@ -25,6 +25,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/error_of.h"
+#include "support/in_child.h"
 #include "support/run_command.h"
 #include "voxlab/error.h"
 #include "voxlab/gradients.h"
@@ -102,38 +103,13 @@ std::size_t mappedBytes() {
 // bytes more than it does at the fork. Returns the voxlab::Error message,
 // "loaded N bytes", "std::bad_alloc" or "killed by signal N".
 std::string loadWithLimitedMemory(const std::string& path, std::uint64_t headroom = kGiB) {
-    int fds[2];
-    if (::pipe(fds) != 0) return "pipe failed";
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-        ::close(fds[0]);
-        const rlim_t limit = rlim_t(mappedBytes() + headroom);
-        const struct rlimit r = {limit, limit};
-        std::string message = "setrlimit failed";
-        if (::setrlimit(RLIMIT_AS, &r) == 0) {
-            try {
-                message = "loaded " + std::to_string(loadVolume(path).bytes().size()) + " bytes";
-            } catch (const Error& e) {
-                message = e.what();
-            } catch (const std::bad_alloc&) {
-                message = "std::bad_alloc";
-            } catch (const std::exception& e) {
-                message = std::string("not a voxlab::Error: ") + e.what();
-            }
-        }
-        const ssize_t ignored = ::write(fds[1], message.data(), message.size());
-        (void)ignored;
-        ::_exit(0);
-    }
-    ::close(fds[1]);
-    std::string message;
-    char buf[4096];
-    for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;) message.append(buf, std::size_t(n));
-    ::close(fds[0]);
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    if (WIFSIGNALED(status)) return "killed by signal " + std::to_string(WTERMSIG(status));
-    return message;
+    return messageInChild(
+        [&] {
+            const rlim_t limit = rlim_t(mappedBytes() + headroom);
+            const struct rlimit r = {limit, limit};
+            return ::setrlimit(RLIMIT_AS, &r) == 0;
+        },
+        [&] { return "loaded " + std::to_string(loadVolume(path).bytes().size()) + " bytes"; });
 }
 
 class InputCaps : public ::testing::Test {

@@ -63,26 +63,14 @@ std::string fingerprint(const fs::path& root) {
 }
 
 // The reference's expected outputs are rendered once for the whole file.
-class Grader : public ::testing::Test {
+class Grader : public ExpectedOutputsSuite<Grader> {
 public:
-    static void SetUpTestSuite() {
-        expected_ = scratch("expected");
-        setUpError_ = renderExpectedOrWhy(options());
-    }
-    void SetUp() override {
-        if (!setUpError_.empty()) FAIL() << "rendering the expected outputs failed: " << setUpError_;
-    }
+    static fs::path expectedFolder() { return scratch("expected"); }
     // Everything the file wrote goes with it (reports of hundreds of images).
     static void TearDownTestSuite() { fs::remove_all(scratchPath("").parent_path()); }
     static GraderOptions options() {
-        GraderOptions o;
-        o.voxlab = VOXLAB_BINARY;
-        o.referenceRoot = (kSource / "reference").string();
-        o.expectedDir = expected_.string();
-        o.shipped = true;
+        GraderOptions o = referenceOptions();
         o.jobs = 2;
-        o.renderThreads = 1;
-        o.progress = false;
         return o;
     }
     static json grade(const fs::path& folder, const std::string& name, GraderOptions o = options()) {
@@ -93,10 +81,6 @@ public:
             if (s["stage"] == id) return s;
         throw Error("no stage " + id + " in the report");
     }
-
-private:
-    static inline fs::path expected_;
-    static inline std::string setUpError_;
 };
 
 TEST_F(Grader, TheReferenceScoresFullMarks) {

@@ -61,27 +61,15 @@ std::string hostileCpp(const std::string& attack, const std::string& includes = 
            "\n    return 0;\n}\nconst int hostileRan = hostile();\n}  // namespace\n";
 }
 
-class HostileSubmissions : public ::testing::Test {
+class HostileSubmissions : public ExpectedOutputsSuite<HostileSubmissions> {
 public:
-    static void SetUpTestSuite() {
-        expected_ = scratch("expected");
-        setUpError_ = renderExpectedOrWhy(options());
-    }
-    void SetUp() override {
-        if (!setUpError_.empty()) FAIL() << "rendering the expected outputs failed: " << setUpError_;
-    }
+    static fs::path expectedFolder() { return scratch("expected"); }
     static void TearDownTestSuite() { if (!std::getenv("VOXLAB_KEEP")) fs::remove_all(scratchRoot()); }
     static GraderOptions options() {
-        GraderOptions o;
-        o.voxlab = VOXLAB_BINARY;
-        o.referenceRoot = (kSource / "reference").string();
-        o.expectedDir = expected_.string();
-        o.shipped = true;
+        GraderOptions o = referenceOptions();
         o.stages = {"mip", "composite", "texslice3d"};
         o.jobs = 1;
-        o.renderThreads = 1;
         o.timeLimit = 20;
-        o.progress = false;
         return o;
     }
 
@@ -114,10 +102,6 @@ public:
     }
 
     std::string report_;  // report.json and index.html of the last grading
-
-private:
-    static inline fs::path expected_;
-    static inline std::string setUpError_;
 };
 
 // --- The graded stage comes only from the submission. ---

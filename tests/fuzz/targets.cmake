@@ -27,4 +27,5 @@ set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
   src/scene/transfer_function_2d.cpp
   src/scene/viewer_script.cpp
   src/render/camera.cpp
-  src/io/atomic_file.cpp)
+  src/io/atomic_file.cpp
+  src/io/fd_io.cpp)

@@ -13,6 +13,7 @@
 
 #include "landlock.h"
 #include "voxlab/error.h"
+#include "voxlab/fd_io.h"
 #include "voxlab/stage_library.h"
 
 namespace voxlab {
@@ -25,35 +26,16 @@ constexpr std::uint32_t kMaxMessage = 4096;
 // stage prints (stdout, stderr) goes to the worker's log, not into answers.
 constexpr int kAnswers = 3;
 
-bool readAll(int fd, void* data, std::size_t size) {
-    auto* p = static_cast<char*>(data);
-    while (size > 0) {
-        const ssize_t n = read(fd, p, size);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) return false;
-        p += n;
-        size -= std::size_t(n);
-    }
-    return true;
-}
-
-bool writeAll(int fd, const void* data, std::size_t size) {
-    const auto* p = static_cast<const char*>(data);
-    while (size > 0) {
-        const ssize_t n = write(fd, p, size);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) return false;
-        p += n;
-        size -= std::size_t(n);
-    }
-    return true;
+// Writes `size` bytes from `data` whole (fd_io.h).
+bool sendAll(int fd, const void* data, std::size_t size) {
+    return writeAll(fd, std::string_view(static_cast<const char*>(data), size)) == 0;
 }
 
 // --- The host. ---
 
 void sendMessage(char status, const std::string& text) {
     const std::uint32_t length = std::uint32_t(std::min<std::size_t>(text.size(), kMaxMessage));
-    if (!writeAll(kAnswers, &status, 1) || !writeAll(kAnswers, &length, 4) || !writeAll(kAnswers, text.data(), length))
+    if (!sendAll(kAnswers, &status, 1) || !sendAll(kAnswers, &length, 4) || !sendAll(kAnswers, text.data(), length))
         _exit(3);
 }
 
@@ -67,13 +49,13 @@ void serveCall(char op, const CppStages& stages) {
                                                                    {a[7], a[8], a[9]});
             if (points.size() > kMaxPoints) throw Error("planeBoxPolygon returned " + std::to_string(points.size()) + " points");
             const std::uint32_t count = std::uint32_t(points.size());
-            if (!writeAll(kAnswers, "O", 1) || !writeAll(kAnswers, &count, 4) ||
-                !writeAll(kAnswers, points.data(), count * sizeof(glm::dvec3)))
+            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, &count, 4) ||
+                !sendAll(kAnswers, points.data(), count * sizeof(glm::dvec3)))
                 _exit(3);
         } else {
             if (!stages.chooseSliceAxis) throw NotImplemented("chooseSliceAxis");
             const std::int32_t axis = stages.chooseSliceAxis({a[0], a[1], a[2]});
-            if (!writeAll(kAnswers, "O", 1) || !writeAll(kAnswers, &axis, 4)) _exit(3);
+            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, &axis, 4)) _exit(3);
         }
     } catch (const NotImplemented& e) {
         sendMessage('N', e.what());
@@ -117,7 +99,7 @@ Host& host() {
 // Sends a call; returns when the answer's status byte says it succeeded.
 void call(char op, const double* args, int count) {
     Host& h = host();
-    if (!writeAll(h.to, &op, 1) || !writeAll(h.to, args, std::size_t(count) * sizeof(double))) hostFailed();
+    if (!sendAll(h.to, &op, 1) || !sendAll(h.to, args, std::size_t(count) * sizeof(double))) hostFailed();
     char status = 0;
     if (!readAll(h.from, &status, 1)) hostFailed();
     if (status == 'O') return;

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "voxlab/error.h"
+#include "voxlab/fd_io.h"
 
 namespace voxlab {
 
@@ -81,12 +82,8 @@ WorkerResults parseWorkerResults(const std::string& stream, const StageManifest&
 
 void WorkerResultWriter::record(const json& header, const std::string& payload) {
     const std::string text = header.dump() + "\n" + payload;
-    for (std::size_t done = 0; done < text.size();) {
-        const ssize_t n = ::write(fd_, text.data() + done, text.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) throw Error(std::string("cannot send results to the grader (fd 3): ") + std::strerror(errno));
-        done += std::size_t(n);
-    }
+    if (const int err = writeAll(fd_, text))
+        throw Error(std::string("cannot send results to the grader (fd 3): ") + std::strerror(err));
 }
 
 void WorkerResultWriter::image(const std::string& scene, const Image& image) {

@@ -15,6 +15,7 @@
 #include <filesystem>
 
 #include "voxlab/error.h"
+#include "voxlab/fd_io.h"
 
 namespace voxlab {
 
@@ -22,18 +23,6 @@ namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& what, int err) {
     throw Error(path + ": cannot " + what + ": " + std::strerror(err));
-}
-
-// Writes all of `bytes` to `fd`; returns 0 or the errno of the failure.
-int writeAll(int fd, std::string_view bytes) {
-    std::size_t done = 0;
-    while (done < bytes.size()) {
-        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) return n < 0 ? errno : ENOSPC;
-        done += std::size_t(n);
-    }
-    return 0;
 }
 
 void writeInPlace(const std::string& path, std::string_view bytes) {

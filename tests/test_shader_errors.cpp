@@ -119,8 +119,15 @@ TEST_F(GlTest, ARayValueStagesEntryShaderIsMadeFromTheTemplate) {
     const std::string& text = generated.at("renderers/minip.frag");
     EXPECT_EQ(text.rfind("#version 330 core", 0), 0u);
     EXPECT_NE(text.find("#include \"minip/minip.glsl\""), std::string::npos) << text;
-    EXPECT_NE(text.find("minip_ray(ray)"), std::string::npos) << text;
+    // MinIP's value is the smallest over runs between bricks (voxlab/runs.glsl).
+    EXPECT_NE(text.find("#define RUN_SMALLEST minip_ray"), std::string::npos) << text;
+    EXPECT_NE(text.find("#define RAY_VALUE smallest_over_runs"), std::string::npos) << text;
     EXPECT_EQ(text.find("STAGE_NAME"), std::string::npos) << text;
+    EXPECT_EQ(text.find("RUN_DEFINES"), std::string::npos) << text;
+    // The average needs the whole ray in one call.
+    const std::string average = rendererRegistry().get("average").generatedShaders().at("renderers/average.frag");
+    EXPECT_NE(average.find("#define RAY_VALUE average_ray"), std::string::npos) << average;
+    EXPECT_EQ(average.find("RUN_"), std::string::npos) << average;
     ShaderLibrary lib = ShaderLibrary::forImplementation(root.string());
     lib.addGenerated("renderers/minip.frag", text);
     EXPECT_EQ(lib.resolve("renderers/minip.frag"), "generated:renderers/minip.frag");

@@ -87,14 +87,12 @@ vec4 composite_front_to_back(Ray ray) {
     // BEGIN SOLUTION
     vec4 result = vec4(0.0);
     int n = sample_count(ray);
-    for (int m = next_visible_sample(ray, 0); m < n; m = next_visible_sample(ray, m)) {
-        for (int end = min(m + samples_per_brick(), n); m < end; ++m) {
-            vec4 c = sample_colour(sample_position(ray, m), ray);
-            float a = opacity_correction(c.a, u_step_units);
-            result.rgb += (1.0 - result.a) * a * c.rgb;
-            result.a += (1.0 - result.a) * a;
-            if (result.a >= u_early_termination) return result;
-        }
+    for (int m = 0; m < n; ++m) {
+        vec4 c = sample_colour(sample_position(ray, m), ray);
+        float a = opacity_correction(c.a, u_step_units);
+        result.rgb += (1.0 - result.a) * a * c.rgb;
+        result.a += (1.0 - result.a) * a;
+        if (result.a >= u_early_termination) break;
     }
     return result;
     // END SOLUTION
@@ -104,7 +102,7 @@ vec4 composite_front_to_back(Ray ray) {
 vec4 composite_back_to_front(Ray ray) {
     // BEGIN SOLUTION
     vec4 result = vec4(0.0);
-    for (int m = last_visible_sample(ray, sample_count(ray) - 1); m >= 0; m = last_visible_sample(ray, m - 1)) {
+    for (int m = sample_count(ray) - 1; m >= 0; --m) {
         vec3 p = sample_position(ray, m);
         vec4 c = sample_colour(p, ray);
         float a = opacity_correction(c.a, u_step_units);

@@ -21,7 +21,7 @@ uniform float u_threshold;  // data units
 bool first_hit(Ray ray, out float t, out float value) {
     // BEGIN SOLUTION
     int n = sample_count(ray);
-    for (int m = next_visible_sample(ray, 0); m < n; m = next_visible_sample(ray, m + 1)) {
+    for (int m = 0; m < n; ++m) {
         vec3 p = sample_position(ray, m);
         float v = sample_volume(p);
         if (v >= u_threshold) {

@@ -34,10 +34,6 @@ bool iso_hit(Ray ray, out float t) {
     float t_before = 0.0;
     float before = 0.0;
     for (int m = 0; m < n; ++m) {
-        // Leap over empty bricks, but land on the last sample before the
-        // next visible one: it is below the isovalue, like every sample so
-        // far, and the crossing test needs it as the "before" of the pair.
-        if (m > 0) m = max(m, next_visible_sample(ray, m) - 1);
         float t_now = ray.t_entry + (float(m) + 0.5) * u_step;
         float now = sample_volume(sample_position(ray, m)) - u_isovalue;
         if (m == 0 && now >= 0.0) {

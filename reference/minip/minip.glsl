@@ -16,12 +16,8 @@ float minip_ray(Ray ray) {
     // BEGIN SOLUTION
     float minimum = 3.4e38;
     int n = sample_count(ray);
-    for (int m = next_sample_below(ray, 0, minimum); m < n; m = next_sample_below(ray, m, minimum)) {
-        for (int end = min(m + samples_per_brick(), n); m < end; ++m) {
-            minimum = min(minimum, sample_volume(sample_position(ray, m)));
-            if (minimum <= u_value_range.x) return minimum;  // nothing can be smaller
-        }
-    }
+    for (int m = 0; m < n; ++m)
+        minimum = min(minimum, sample_volume(sample_position(ray, m)));
     return minimum;
     // END SOLUTION
 }

@@ -19,11 +19,8 @@ float mip_ray(Ray ray) {
     // BEGIN SOLUTION
     float maximum = -3.4e38;
     int n = sample_count(ray);
-    for (int m = next_sample_above(ray, 0, maximum); m < n; m = next_sample_above(ray, m, maximum)) {
-        for (int end = min(m + samples_per_brick(), n); m < end; ++m)
-            maximum = max(maximum, sample_volume(sample_position(ray, m)));
-        if (maximum >= u_value_range.y) break;  // nothing can be larger
-    }
+    for (int m = 0; m < n; ++m)
+        maximum = max(maximum, sample_volume(sample_position(ray, m)));
     return maximum;
     // END SOLUTION
 }

@@ -2,11 +2,14 @@
 // Renderer "firsthit": the first sample at or above a threshold, shown by
 // its value (grey window or transfer function) or, with `depth`, by its
 // distance (depth_grey: near white, far black). The stage is first_hit(),
-// in firsthit/firsthit.glsl.
+// in firsthit/firsthit.glsl, called once per run between empty bricks
+// (voxlab/runs.glsl).
 #include "voxlab/ray.glsl"
 #include "voxlab/classify.glsl"
 #include "voxlab/output.glsl"
 #include "firsthit/firsthit.glsl"
+#define RUN_FIRST_HIT first_hit
+#include "voxlab/runs.glsl"
 
 uniform int u_depth;
 
@@ -15,9 +18,7 @@ out vec4 frag_color;
 void main() {
     Ray ray = camera_ray();
     float t, value;
-    bool inside = clip_to_volume(ray);
-    if (inside) skip_empty_ends(ray);
-    if (!inside || !first_hit(ray, t, value)) {
+    if (!clip_to_volume(ray) || !first_hit_over_runs(ray, t, value)) {
         frag_color = nothing();
         return;
     }

@@ -3,10 +3,13 @@
 // surface of one colour or, with `depth`, as its distance (depth_grey: near
 // white, far black). The stage is iso_hit(), in iso/iso.glsl; the normal
 // comes from the gradient stage and the lighting from the shading stage.
+// iso_hit() gets the ray in runs between empty bricks (voxlab/runs.glsl).
 #include "voxlab/ray.glsl"
 #include "voxlab/output.glsl"
 #include "voxlab/lighting.glsl"
 #include "iso/iso.glsl"
+#define RUN_CROSSING iso_hit
+#include "voxlab/runs.glsl"
 
 uniform float u_color_r;
 uniform float u_color_g;
@@ -18,9 +21,7 @@ out vec4 frag_color;
 void main() {
     Ray ray = camera_ray();
     float t;
-    bool inside = clip_to_volume(ray);
-    if (inside) skip_empty_ends(ray);
-    if (!inside || !iso_hit(ray, t)) {
+    if (!clip_to_volume(ray) || !crossing_over_runs(ray, t)) {
         frag_color = nothing();
         return;
     }

@@ -1,10 +1,13 @@
 #version 330 core
 // Renderer "mip": maximum intensity projection. The stage itself,
-// mip_ray(), is implemented in mip/mip.glsl (reference/ or a submission).
+// mip_ray(), is implemented in mip/mip.glsl (reference/ or a submission);
+// largest_over_runs() calls it once per run between empty bricks.
 #include "voxlab/ray.glsl"
 #include "voxlab/classify.glsl"
 #include "voxlab/output.glsl"
 #include "mip/mip.glsl"
+#define RUN_LARGEST mip_ray
+#include "voxlab/runs.glsl"
 
 out vec4 frag_color;
 
@@ -14,5 +17,5 @@ void main() {
         frag_color = nothing();
         return;
     }
-    frag_color = finish(display_value(mip_ray(ray)));
+    frag_color = finish(display_value(largest_over_runs(ray)));
 }

@@ -6,6 +6,8 @@
 #include "voxlab/output.glsl"
 #include "mip/mip.glsl"
 #include "slab_mip/slab_mip.glsl"
+#define RUN_LARGEST mip_ray
+#include "voxlab/runs.glsl"
 
 out vec4 frag_color;
 
@@ -15,5 +17,5 @@ void main() {
         frag_color = nothing();
         return;
     }
-    frag_color = finish(display_value(mip_ray(ray)));
+    frag_color = finish(display_value(largest_over_runs(ray)));
 }

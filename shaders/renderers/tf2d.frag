@@ -7,6 +7,9 @@
 #include "voxlab/output.glsl"
 #include "voxlab/lighting.glsl"
 #include "composite/composite.glsl"
+#define RUN_FRONT_TO_BACK composite_front_to_back
+#define RUN_BACK_TO_FRONT composite_back_to_front
+#include "voxlab/runs.glsl"
 #include "tf2d/tf2d.glsl"
 
 uniform int u_back_to_front;
@@ -27,6 +30,5 @@ void main() {
         return;
     }
     if (u_jitter != 0) jitter_start(ray);
-    skip_empty_ends(ray);
-    frag_color = finish(u_back_to_front != 0 ? composite_back_to_front(ray) : composite_front_to_back(ray));
+    frag_color = finish(u_back_to_front != 0 ? back_to_front_over_runs(ray) : front_to_back_over_runs(ray));
 }

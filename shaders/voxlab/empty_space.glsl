@@ -19,12 +19,11 @@
 //   next_sample_above(ray, m, v)  the first sample >= m in a brick whose
 //                                 largest value is above v (MIP)
 //   next_sample_below(ray, m, v)  the same for the smallest value below v (MinIP)
-//   skip_empty_ends(ray)          tight ray interval: moves t_entry and t_exit
-//                                 in to the first and last visible samples
 //
-// All return the sample unchanged (or leave the ray alone) when skipping is
-// off (u_skipping == 0: the scene's "skip_empty_space": false, and always
-// while grading, so that a submission is rendered sample for sample).
+// All return the sample unchanged when skipping is off (u_skipping == 0:
+// the scene's "skip_empty_space": false, and always while grading, so that
+// a submission is rendered sample for sample). The stages never call them:
+// voxlab/runs.glsl walks the ray and hands a stage's loop one run at a time.
 #ifndef VOXLAB_EMPTY_SPACE_GLSL
 #define VOXLAB_EMPTY_SPACE_GLSL
 
@@ -107,25 +106,6 @@ int last_visible_sample(Ray ray, int m) {
         m = min(m - 1, int(floor((t - ray.t_entry) / u_step - 0.5)));
     }
     return -1;
-}
-
-// Trims the ray to the samples from one before the first visible one to one
-// after the last (the extra sample on each side lies in empty space, and
-// lets a renderer that compares neighbouring samples, like the isosurface's
-// crossing test, see the same pair it would see without skipping). A ray
-// that meets no visible brick is left with no samples.
-void skip_empty_ends(inout Ray ray) {
-    if (u_skipping == 0) return;
-    int n = sample_count(ray);
-    int first = next_visible_sample(ray, 0);
-    if (first >= n) {
-        ray.t_exit = ray.t_entry;
-        return;
-    }
-    int last = min(last_visible_sample(ray, n - 1) + 1, n - 1);
-    first = max(first - 1, 0);
-    ray.t_exit = ray.t_entry + float(last + 1) * u_step;
-    ray.t_entry += float(first) * u_step;
 }
 
 #endif

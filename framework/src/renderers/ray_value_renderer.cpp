@@ -12,6 +12,25 @@
 #include "voxlab/scene.h"
 
 namespace voxlab {
+namespace {
+
+void replaceAll(std::string& text, const std::string& from, const std::string& to) {
+    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+        text.replace(at, from.size(), to);
+}
+
+// How the entry shader calls the stage (voxlab/runs.glsl): a largest or
+// smallest value can be taken over runs between bricks that cannot change
+// it; any other value needs the whole ray in one call.
+std::string runDefines(ProfileModel profile) {
+    if (profile == ProfileModel::Maximum)
+        return "#define RUN_LARGEST STAGE_NAME_ray\n#define RAY_VALUE largest_over_runs";
+    if (profile == ProfileModel::Minimum)
+        return "#define RUN_SMALLEST STAGE_NAME_ray\n#define RAY_VALUE smallest_over_runs";
+    return "#define RAY_VALUE STAGE_NAME_ray";
+}
+
+}  // namespace
 
 RayValueRenderer::RayValueRenderer(std::string stage, std::string description, ProfileModel profile,
                                    std::vector<ParameterSpec> parameters)
@@ -32,8 +51,8 @@ std::map<std::string, std::string> RayValueRenderer::generatedShaders() const {
     std::string shader = "#version 330 core\n// Renderer \"" + stage_ +
                          "\", made from shaders/renderers/ray_value.frag.in: " + stage_ + "_ray() of each pixel's ray.\n" +
                          body.substr(from);
-    for (std::size_t at = shader.find("STAGE_NAME"); at != std::string::npos; at = shader.find("STAGE_NAME", at))
-        shader.replace(at, 10, stage_);
+    replaceAll(shader, "RUN_DEFINES", runDefines(profile_));
+    replaceAll(shader, "STAGE_NAME", stage_);
     return {{fragmentShader(), shader}};
 }
 

@@ -15,7 +15,9 @@ kept (the slicer is a worked example). Grading scenes marked "hidden" in a
 stage's grading.json are left out of its generated manifest, and their scene
 files are not copied: they are graded but never shipped. A stage's
 mutants.json (its mutant suite, which holds solution text) is never copied.
-Every other file is copied as it is.
+Every other file (handouts, scenes, images, volumes: text or binary) is
+copied byte for byte. The files the tool rewrites (.glsl, .cpp, .h and
+grading.json) must be UTF-8 text.
 assignments/README.md is not generated.
 
     python3 tools/make_assignments.py           # (re)writes assignments/
@@ -122,7 +124,13 @@ def without_hidden_scenes(rel, text):
     return manifest_format.dumps(manifest), paths
 
 
+def rewritten(rel):
+    """Whether the tool rewrites this file (else it is copied byte for byte)."""
+    return rel.endswith((".glsl", ".cpp", ".h")) or os.path.basename(rel) == "grading.json"
+
+
 def expected_files():
+    """Every file of assignments/ the tool owns, as its exact bytes."""
     files, hidden = {}, set()
     for folder, _, names in os.walk(REFERENCE):
         for name in sorted(names):
@@ -130,12 +138,20 @@ def expected_files():
                 continue
             full = os.path.join(folder, name)
             rel = os.path.relpath(full, REFERENCE)
-            with open(full, encoding="utf-8") as f:
-                text = f.read()
+            with open(full, "rb") as f:
+                data = f.read()
+            if not rewritten(rel):
+                files[rel] = data  # a handout, a scene, an image, a volume: as it is
+                continue
+            try:
+                # Universal newlines, as before: the generated file has \n line ends.
+                text = data.decode("utf-8").replace("\r\n", "\n").replace("\r", "\n")
+            except UnicodeDecodeError as e:
+                raise GeneratorError(f"reference/{rel}: not UTF-8 text ({e.reason} at byte {e.start})")
             if name == "grading.json":
                 text, paths = without_hidden_scenes(rel, text)
                 hidden |= paths
-            files[rel] = generate(rel, text)
+            files[rel] = generate(rel, text).encode("utf-8")
     for rel in hidden:
         files.pop(rel, None)
     return files
@@ -162,13 +178,13 @@ def main():
     stale = sorted(existing_files() - set(files))
     if args.check:
         problems = [f"assignments/{rel}: not in reference/ (remove it)" for rel in stale]
-        for rel, text in sorted(files.items()):
+        for rel, data in sorted(files.items()):
             path = os.path.join(ASSIGNMENTS, rel)
             if not os.path.exists(path):
                 problems.append(f"assignments/{rel}: missing")
             else:
-                with open(path, encoding="utf-8") as f:
-                    if f.read() != text:
+                with open(path, "rb") as f:
+                    if f.read() != data:
                         problems.append(f"assignments/{rel}: differs from what reference/{rel} generates")
         for p in problems:
             print(p, file=sys.stderr)
@@ -180,11 +196,11 @@ def main():
         return
     for rel in stale:
         os.remove(os.path.join(ASSIGNMENTS, rel))
-    for rel, text in files.items():
+    for rel, data in files.items():
         path = os.path.join(ASSIGNMENTS, rel)
         os.makedirs(os.path.dirname(path), exist_ok=True)
-        with open(path, "w", encoding="utf-8") as f:
-            f.write(text)
+        with open(path, "wb") as f:
+            f.write(data)
     print(f"wrote {len(files)} files to assignments/")
 
 

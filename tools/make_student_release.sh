@@ -14,6 +14,8 @@
 # checks that no solution text went along: no BEGIN SOLUTION marker, and no
 # three consecutive lines of a solution block in any shipped file; and that
 # no hidden grading scene went along (its scene file or its golden image).
+# It prints one line as each step starts and one with its time as it ends
+# (about 5 minutes in all on 2 cores, most of it rendering expected/).
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -24,12 +26,30 @@ if [ -e "$out" ] && [ -n "$(ls -A "$out" 2>/dev/null)" ]; then
   exit 2
 fi
 
-# The starter code must match the reference it is generated from.
-python3 "$root/tools/make_assignments.py" --check
+# Progress: `step N TEXT` ends the previous step, printing its time, and
+# starts step N of $steps; `step done` ends the last one.
+steps=5
+step_number=0 step_text="" step_start=0 release_start=$(date +%s%N)
+seconds_since() { awk -v a="$1" -v b="$(date +%s%N)" 'BEGIN { printf "%.1f", (b - a) / 1e9 }'; }
+step() {
+  if [ "$step_number" -gt 0 ]; then
+    echo "release: [$step_number/$steps] done in $(seconds_since "$step_start") s"
+  fi
+  [ "$1" = done ] && return
+  step_number=$1 step_text=$2 step_start=$(date +%s%N)
+  echo "release: [$step_number/$steps] $step_text"
+}
+trap 'echo "make_student_release: failed in step $step_number/$steps ($step_text)" >&2' ERR
 
+# The starter code must match the reference it is generated from.
+step 1 "checking that assignments/ matches reference/"
+python3 "$root/tools/make_assignments.py" --check >/dev/null
+
+step 2 "building voxlab in $build"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target voxlab >/dev/null
 
+step 3 "copying the framework, shaders, starter code, datasets and docs to $out"
 mkdir -p "$out"
 for item in CMakeLists.txt framework shaders assignments datasets docs; do
   cp -r "$root/$item" "$out/"
@@ -68,11 +88,13 @@ mkdir -p "$out/tests/golden"   # the scenes the handouts render (JSON only)
 cp -r "$root/tests/golden/scenes" "$out/tests/golden/"
 
 # The expected outputs, rendered by the reference on this machine.
+step 4 "rendering expected/ with the reference (every stage's scenes and checks; the longest step)"
 LP_NUM_THREADS="${LP_NUM_THREADS:-2}" "$build/bin/voxlab" grade --render-expected "$out/expected" --quiet >/dev/null
 rm -f "$out/expected/reference_stages.so"
 
 # No solution may leak: no mutant suite (its substitutions quote the solution),
 # no markers, and no non-trivial solution line.
+step 5 "checking that no solution text and no hidden scene was shipped"
 if find "$out" -name mutants.json | grep -q .; then
   echo "make_student_release: a stage's mutants.json was shipped:" >&2
   find "$out" -name mutants.json >&2
@@ -129,4 +151,6 @@ if shipped:
     print("make_student_release: hidden grading scenes were shipped:", *shipped, sep="\n", file=sys.stderr)
     sys.exit(1)
 PY
+step done
+echo "release: $(seconds_since "$release_start") s in all"
 echo "student release: $out ($(du -sh "$out" | cut -f1)); build it with tools/setup.sh, check work with voxlab check"

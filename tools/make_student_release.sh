@@ -14,6 +14,10 @@
 # checks that no solution text went along: no BEGIN SOLUTION marker, and no
 # three consecutive lines of a solution block in any shipped file; and that
 # no hidden grading scene went along (its scene file or its golden image).
+# Every shipped Markdown file is its student text (tools/student_text.py):
+# blocks marked for instructors are removed, those marked for students shown,
+# instructor-only files left out; the release fails if instructor material
+# (build/tests, VOXLAB_STAGE_ROOT, the generator, drift tests) is left in it.
 # It prints one line as each step starts and one with its time as it ends
 # (about 5 minutes in all on 2 cores, most of it rendering expected/).
 set -euo pipefail
@@ -28,7 +32,7 @@ fi
 
 # Progress: `step N TEXT` ends the previous step, printing its time, and
 # starts step N of $steps; `step done` ends the last one.
-steps=5
+steps=6
 step_number=0 step_text="" step_start=0 release_start=$(date +%s%N)
 seconds_since() { awk -v a="$1" -v b="$(date +%s%N)" 'BEGIN { printf "%.1f", (b - a) / 1e9 }'; }
 step() {
@@ -87,14 +91,18 @@ MD
 mkdir -p "$out/tests/golden"   # the scenes the handouts render (JSON only)
 cp -r "$root/tests/golden/scenes" "$out/tests/golden/"
 
+# What students read: the handouts, READMEs and docs without instructor material.
+step 4 "turning the Markdown into its student text (tools/student_text.py)"
+python3 "$root/tools/student_text.py" --release "$out" >/dev/null
+
 # The expected outputs, rendered by the reference on this machine.
-step 4 "rendering expected/ with the reference (every stage's scenes and checks; the longest step)"
+step 5 "rendering expected/ with the reference (every stage's scenes and checks; the longest step)"
 LP_NUM_THREADS="${LP_NUM_THREADS:-2}" "$build/bin/voxlab" grade --render-expected "$out/expected" --quiet >/dev/null
 rm -f "$out/expected/reference_stages.so"
 
 # No solution may leak: no mutant suite (its substitutions quote the solution),
 # no markers, and no non-trivial solution line.
-step 5 "checking that no solution text and no hidden scene was shipped"
+step 6 "checking that no solution text and no hidden scene was shipped"
 if find "$out" -name mutants.json | grep -q .; then
   echo "make_student_release: a stage's mutants.json was shipped:" >&2
   find "$out" -name mutants.json >&2

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "commands.h"
+#include "voxlab/assignment.h"
 #include "voxlab/atomic_file.h"
 #include "voxlab/error.h"
 #include "voxlab/grader.h"
@@ -21,7 +22,8 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 std::vector<OptionSpec> limitOptions() {
-    return {{"stage", "S", "grade only stage S (repeatable; default: every stage)"},
+    return {{"assignment", "FILE", "an assignment file (courses/*.json): its stages, points and test visibility"},
+            {"stage", "S", "grade only stage S (repeatable; default: every stage, or the assignment's)"},
             {"out", "DIR", "report folder"},
             {"jobs", "N", "stages graded at once, each in its own process (default: the CPU count)"},
             {"time-limit", "SECONDS", "per stage and submission (default 60)"},
@@ -45,6 +47,44 @@ GraderOptions limitsFrom(const Args& args) {
     }
     o.progress = !args.has("quiet");
     return o;
+}
+
+// An assignment file chooses the stages (a --stage must be one of them)
+// and their points.
+std::optional<Assignment> assignmentFrom(const Args& args, GraderOptions& options) {
+    if (!args.get("assignment")) return std::nullopt;
+    Assignment a = loadAssignment(*args.get("assignment"), options.referenceRoot);
+    std::vector<std::string> stages;
+    for (const AssignmentStage& s : a.stages) {
+        stages.push_back(s.stage);
+        if (s.points) options.points[s.stage] = *s.points;
+    }
+    for (const std::string& s : options.stages)
+        if (std::find(stages.begin(), stages.end(), s) == stages.end())
+            throw Error("option --stage: " + s + " is not a stage of " + a.path);
+    if (options.stages.empty()) options.stages = stages;
+    return a;
+}
+
+std::optional<double> timeOption(const Args& args, const std::string& name) {
+    if (!args.get(name)) return std::nullopt;
+    const std::optional<double> t = parseIsoTime(*args.get(name));
+    if (!t) throw Error("option --" + name + ": not an ISO 8601 time (e.g. 2026-12-01T23:59:00+01:00)");
+    return t;
+}
+
+// A submission as uploaded, brought into the shape of assignments/
+// (assignment.h): nested folders are found, loose files are placed.
+Submission shapedSubmission(const std::string& name, const fs::path& upload, const fs::path& report,
+                            const GraderOptions& options) {
+    std::vector<std::string> stages;  // an unknown one is the grader's to report, with its own message
+    for (const std::string& s : options.stages.empty() ? gradedStages(options.referenceRoot) : options.stages)
+        if (fs::exists(fs::path(options.referenceRoot) / s / "grading.json")) stages.push_back(s);
+    const fs::path staging = report / ".upload";
+    fs::remove_all(staging);
+    Submission s{name, "", report.string(), {}, ""};
+    s.folder = submissionRoot(upload.string(), options.referenceRoot, stages, staging.string(), &s.layoutNote);
+    return s;
 }
 
 std::string csvField(const std::string& s) {
@@ -88,7 +128,9 @@ int gradeCommand(int argc, char** argv) {
         {"submission", "DIR", "a submission folder, shaped like assignments/"},
         {"batch", "DIR", "grade every submission folder inside DIR (a class)"},
         {"reference", "DIR", "the reference solution (default: the project's reference/)"},
-        {"render-expected", "DIR", "only render the reference's expected outputs into DIR (for a student release)"}};
+        {"render-expected", "DIR", "only render the reference's expected outputs into DIR (for a student release)"},
+        {"submitted-at", "TIME", "when the submission was made (ISO 8601), for the assignment's late policy"},
+        {"due", "TIME", "the due date (ISO 8601), instead of the assignment file's"}};
     for (const OptionSpec& s : limitOptions()) specs.push_back(s);
     const Args args(specs, argc, argv, 2, "grade");
     if (args.get("render-expected") && !args.has("submission") && !args.has("batch")) {
@@ -108,7 +150,10 @@ int gradeCommand(int argc, char** argv) {
                      "FLIP), and function checks run on random inputs. Each stage runs in its own process with a\n"
                      "time limit and a memory cap. Writes REPORT_DIR/index.html (open it in a browser),\n"
                      "report.json and results.json (Gradescope). --batch grades each folder of DIR into\n"
-                     "OUT/<name>/ and writes OUT/gradebook.csv and OUT/index.html.\n\n"
+                     "OUT/<name>/ and writes OUT/gradebook.csv and OUT/index.html. An upload may be the\n"
+                     "assignments/ folder, its contents, a folder with it nested inside, or loose stage files.\n"
+                     "--assignment FILE (courses/*.json) chooses the stages, their points, each test's\n"
+                     "visibility in results.json and the late policy (with --submitted-at).\n\n"
                   << formatOptions(specs);
         return args.has("help") ? 0 : 2;
     }
@@ -116,6 +161,10 @@ int gradeCommand(int argc, char** argv) {
     options.referenceRoot = args.get("reference").value_or(projectRoot() + "/reference");
     const fs::path out = args.get("out").value_or("grade-report");
     options.expectedDir = (out / ".expected").string();
+    const std::optional<Assignment> assignment = assignmentFrom(args, options);
+    const std::optional<double> submittedAt = timeOption(args, "submitted-at"), due = timeOption(args, "due");
+    if (assignment)
+        options.adjustReport = [&](json& report) { applyAssignment(report, *assignment, submittedAt, due); };
 
     std::vector<Submission> submissions;
     if (args.has("submission")) {
@@ -123,14 +172,14 @@ int gradeCommand(int argc, char** argv) {
         if (!fs::is_directory(folder)) throw Error(folder.string() + ": no such folder");
         fs::path normal = fs::absolute(folder).lexically_normal();
         if (normal.filename().empty()) normal = normal.parent_path();  // "alice/"
-        submissions.push_back({normal.filename().string(), folder.string(), out.string()});
+        submissions.push_back(shapedSubmission(normal.filename().string(), folder, out, options));
     } else {
         const fs::path batch = *args.get("batch");
         if (!fs::is_directory(batch)) throw Error(batch.string() + ": no such folder");
         for (const auto& entry : fs::directory_iterator(batch))
             if (entry.is_directory() && entry.path().filename().string()[0] != '.')
-                submissions.push_back({entry.path().filename().string(), entry.path().string(),
-                                       (out / entry.path().filename()).string()});
+                submissions.push_back(shapedSubmission(entry.path().filename().string(), entry.path(),
+                                                       out / entry.path().filename(), options));
         std::sort(submissions.begin(), submissions.end(),
                   [](const Submission& a, const Submission& b) { return a.name < b.name; });
         if (submissions.empty()) throw Error(batch.string() + ": no submission folders inside");
@@ -172,6 +221,9 @@ int checkCommand(int argc, char** argv) {
     options.isolateStage = false;
     options.hiddenScenes = false;
     const fs::path root = projectRoot();
+    options.referenceRoot = fs::is_directory(root / "reference") ? (root / "reference").string()
+                                                                 : args.get("submission").value_or((root / "assignments").string());
+    assignmentFrom(args, options);
     const fs::path out = args.get("out").value_or("voxlab-check");
     const std::string tree = args.get("submission").value_or((root / "assignments").string());
     if (fs::is_directory(root / "expected")) {

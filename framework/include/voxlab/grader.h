@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -35,11 +36,15 @@ struct GraderOptions {
     bool isolateStage = true;     // false for a self-check: the submission's whole tree runs
     bool hiddenScenes = true;     // grade scenes marked "hidden" (false: `voxlab check`, a release's goldens)
     std::vector<std::string> stages;  // empty: every stage with a manifest, in teaching order
+    std::map<std::string, double> points;  // stage -> points instead of its manifest's (an assignment file)
     double timeLimit = 60.0;          // seconds per stage
     std::size_t memoryLimit = std::size_t(4) << 30;
     int jobs = 1;                 // stages graded at once (each a process)
     int renderThreads = 0;        // llvmpipe threads per process; 0: $LP_NUM_THREADS, else cores / jobs
     bool progress = true;         // a progress bar on stderr
+    // Called on each submission's report before it is written (an
+    // assignment file's visibility and late policy: assignment.h).
+    std::function<void(nlohmann::json& report)> adjustReport;
 };
 
 struct Submission {
@@ -47,6 +52,7 @@ struct Submission {
     std::string folder;  // shaped like assignments/
     std::string reportDir;
     std::vector<std::string> stages;  // empty: the options' stages
+    std::string layoutNote;           // how the upload was brought into shape (submissionRoot), if it was
 };
 
 // Renders the expected outputs of `options.stages` from the reference into

@@ -99,6 +99,7 @@ std::vector<std::string> chosenStages(const GraderOptions& options) {
 // stageManifests(), which has checked its functions against its files.)
 StageManifest gradedManifest(const std::string& stage, const GraderOptions& options) {
     StageManifest m = loadStageManifest(options.referenceRoot, stage);
+    if (const auto it = options.points.find(stage); it != options.points.end()) m.points = it->second;
     if (!options.hiddenScenes)
         m.scenes.erase(std::remove_if(m.scenes.begin(), m.scenes.end(), [](const GradedScene& s) { return s.hidden; }),
                        m.scenes.end());
@@ -237,6 +238,8 @@ std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, c
         report["score"] = score;
         report["max_score"] = maxScore;
         report["stages"] = graded;
+        if (!sub.layoutNote.empty()) report["layout_note"] = sub.layoutNote;
+        if (options.adjustReport) options.adjustReport(report);
         fs::remove_all(fs::path(sub.reportDir) / ".work");
         writeFileAtomically((fs::path(sub.reportDir) / "report.json").string(), report.dump(2) + "\n");
         writeFileAtomically((fs::path(sub.reportDir) / "results.json").string(),

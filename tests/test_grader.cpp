@@ -109,6 +109,31 @@ TEST_F(Grader, ThePristineAssignmentsScoreZeroAndSayNotImplemented) {
     EXPECT_EQ(report["score"].get<double>(), 0.0);
 }
 
+// llvmpipe ends every shader loop after 65535 rounds, so a loop whose
+// counter never grows finishes with wrong pixels instead of hanging. It must
+// still be called a time-out, which it would be on a GPU: the worker counts
+// the first scene's samples against the sampling rule.
+TEST_F(Grader, ALoopThatNeverEndsIsATimeoutEvenWhenLlvmpipeCutsItShort) {
+    const fs::path root = scratch("runaway");
+    const fs::path sub = root / "submission";
+    fs::create_directories(sub / "mip");
+    std::string text = readFile(kSource / "reference" / "mip" / "mip.glsl");
+    const std::string loop = "for (int m = 0; m < n; ++m)";
+    ASSERT_NE(text.find(loop), std::string::npos);
+    text.replace(text.find(loop), loop.size(), "for (int m = 0; m < n; m += 0)");
+    std::ofstream(sub / "mip" / "mip.glsl") << text;
+    GraderOptions o = options();
+    o.stages = {"mip"};
+    const json report = grade(sub, "runaway", o);
+    const json& mip = stage(report, "mip");
+    EXPECT_EQ(mip["status"], "timeout") << mip["message"];
+    EXPECT_NE(mip["message"].get<std::string>().find("a loop ran away"), std::string::npos) << mip["message"];
+    EXPECT_EQ(mip["score"].get<double>(), 0.0);
+    // The reference's own loop is not a runaway.
+    const json good = grade(kSource / "reference", "reference", o);
+    EXPECT_EQ(stage(good, "mip")["status"], "passed") << stage(good, "mip")["message"];
+}
+
 TEST_F(Grader, HangsCrashesAndCompileErrorsAreReportedInBoundedTime) {
     const fs::path root = scratch("broken");
     const fs::path sub = root / "submission";

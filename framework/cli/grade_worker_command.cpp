@@ -20,6 +20,7 @@
 #include "voxlab/gl_context.h"
 #include "voxlab/grading.h"
 #include "voxlab/image.h"
+#include "voxlab/ray_profile.h"
 #include "voxlab/render_engine.h"
 #include "voxlab/shader.h"
 #include "voxlab/stage_host.h"
@@ -55,6 +56,42 @@ void renderScenes(const StageManifest& manifest, std::map<std::string, Volume>& 
         } catch (const std::exception& e) {
             out.error("scene", graded.name, errorKind(e), e.what());
         }
+    }
+}
+
+// An endless loop does not hang llvmpipe: Mesa's gallivm ends every shader
+// loop after 65 535 rounds, so a loop whose counter never reaches its bound
+// (m += 0) returns wrong pixels in seconds instead of running into the time
+// limit. Counting the samples of the first scene that rays sample tells the
+// two apart: a stage's loop takes about the sampling rule's number (a few
+// times that at most, if it reads a sample twice), a runaway loop hundreds
+// of times more. It is reported as the time-out it would be on a GPU.
+void checkForRunawayLoop(const StageManifest& manifest, std::map<std::string, Volume>& volumes, RenderEngine& engine,
+                         WorkerResultWriter& out) {
+    for (const GradedScene& graded : manifest.scenes) {
+        try {
+            Scene scene = Scene::load(graded.scenePath);
+            scene.skipEmptySpace = false;
+            if (!samplesCountable(scene)) continue;
+            auto found = volumes.find(scene.dataset);
+            if (found == volumes.end()) continue;  // it did not render
+            engine.setVolume(found->second);
+            const double rule = samplesByRule(found->second, scene);
+            const double taken = engine.countSamples(scene);
+            const double pixels = double(scene.width) * double(scene.height);
+            if (taken > 8.0 * rule + 16.0 * pixels) {
+                char message[400];
+                std::snprintf(message, sizeof message,
+                              "a loop ran away: scene %s took %.3g samples where the sampling rule gives %.3g "
+                              "(llvmpipe ends any loop after 65535 rounds; a GPU would hang): does a loop's "
+                              "counter never reach its bound?",
+                              graded.name.c_str(), taken, rule);
+                out.error("stage", "loop", "runaway", message);
+            }
+        } catch (const std::exception&) {
+            // A scene that failed to render has already said why.
+        }
+        return;
     }
 }
 
@@ -103,6 +140,7 @@ int gradeWorkerCommand(int argc, char** argv) {
     std::map<std::string, Volume> volumes;
     RenderEngine engine(implementation);
     renderScenes(manifest, volumes, engine, out);
+    checkForRunawayLoop(manifest, volumes, engine, out);
     for (const GradedCheck& check : manifest.checks) {
         try {
             out.check(check.name, runFunctionCheck(check.name, implementation));

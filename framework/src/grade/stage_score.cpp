@@ -161,6 +161,8 @@ std::pair<std::string, std::string> stageStatus(const RunOutcome& outcome, const
     if (!compileLog.empty()) return {"compile_error", errorLine(compileLog)};
     if (!outcome.finished && outcome.ended.rfind("timed out", 0) == 0)
         return {"timeout", "the stage " + outcome.ended + " (an endless loop?); scenes finished before it are scored"};
+    for (const auto& [key, error] : outcome.results.errors)  // the worker's runaway-loop check
+        if (error.value("kind", "") == "runaway") return {"timeout", error.value("message", "a loop ran away")};
     if (!outcome.finished && outcome.ended.rfind("crashed", 0) == 0)
         return {"crashed", "the stage's process " + outcome.ended};
     for (const auto& [key, error] : outcome.results.errors)  // a C++ stage's host

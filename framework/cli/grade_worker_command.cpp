@@ -39,9 +39,39 @@ std::string errorKind(const std::exception& e) {
     return "error";
 }
 
+// An endless loop does not hang llvmpipe: Mesa's gallivm ends every shader
+// loop after 65 535 rounds, so a loop whose counter never reaches its bound
+// (m += 0) returns wrong pixels in seconds instead of running into the time
+// limit. Counting the samples of a scene that rays sample tells the two
+// apart: a stage's loop takes about the sampling rule's number (a few times
+// that at most, if it reads a sample twice), a runaway loop hundreds of
+// times more. It is reported as the time-out it would be on a GPU.
+void checkForRunawayLoop(const std::string& name, const Scene& scene, const Volume& volume, RenderEngine& engine,
+                         WorkerResultWriter& out) {
+    try {
+        const double rule = samplesByRule(volume, scene);
+        const double taken = engine.countSamples(scene);
+        const double pixels = double(scene.width) * double(scene.height);
+        if (taken <= 8.0 * rule + 16.0 * pixels) return;
+        char message[400];
+        std::snprintf(message, sizeof message,
+                      "a loop ran away: scene %s took %.3g samples where the sampling rule gives %.3g "
+                      "(llvmpipe ends any loop after 65535 rounds; a GPU would hang): does a loop's "
+                      "counter never reach its bound?",
+                      name.c_str(), taken, rule);
+        out.error("stage", "loop", "runaway", message);
+    } catch (const std::exception&) {
+        // The scene rendered, so counting fails only if the context did; its
+        // image is already sent and a second record for it is not allowed.
+    }
+}
+
 // `volumes` outlives `engine`, which keeps the address of the one it draws.
+// The first scene that rendered and whose samples count is also checked for
+// a runaway loop.
 void renderScenes(const StageManifest& manifest, std::map<std::string, Volume>& volumes, RenderEngine& engine,
                   WorkerResultWriter& out) {
+    bool loopChecked = false;
     for (const GradedScene& graded : manifest.scenes) {
         try {
             Scene scene = Scene::load(graded.scenePath);
@@ -53,45 +83,13 @@ void renderScenes(const StageManifest& manifest, std::map<std::string, Volume>& 
             if (found == volumes.end()) found = volumes.emplace(scene.dataset, loadVolume(scene.dataset)).first;
             engine.setVolume(found->second);
             out.image(graded.name, engine.render(scene));
+            if (!loopChecked && samplesCountable(scene)) {
+                loopChecked = true;
+                checkForRunawayLoop(graded.name, scene, found->second, engine, out);
+            }
         } catch (const std::exception& e) {
             out.error("scene", graded.name, errorKind(e), e.what());
         }
-    }
-}
-
-// An endless loop does not hang llvmpipe: Mesa's gallivm ends every shader
-// loop after 65 535 rounds, so a loop whose counter never reaches its bound
-// (m += 0) returns wrong pixels in seconds instead of running into the time
-// limit. Counting the samples of the first scene that rays sample tells the
-// two apart: a stage's loop takes about the sampling rule's number (a few
-// times that at most, if it reads a sample twice), a runaway loop hundreds
-// of times more. It is reported as the time-out it would be on a GPU.
-void checkForRunawayLoop(const StageManifest& manifest, std::map<std::string, Volume>& volumes, RenderEngine& engine,
-                         WorkerResultWriter& out) {
-    for (const GradedScene& graded : manifest.scenes) {
-        try {
-            Scene scene = Scene::load(graded.scenePath);
-            scene.skipEmptySpace = false;
-            if (!samplesCountable(scene)) continue;
-            auto found = volumes.find(scene.dataset);
-            if (found == volumes.end()) continue;  // it did not render
-            engine.setVolume(found->second);
-            const double rule = samplesByRule(found->second, scene);
-            const double taken = engine.countSamples(scene);
-            const double pixels = double(scene.width) * double(scene.height);
-            if (taken > 8.0 * rule + 16.0 * pixels) {
-                char message[400];
-                std::snprintf(message, sizeof message,
-                              "a loop ran away: scene %s took %.3g samples where the sampling rule gives %.3g "
-                              "(llvmpipe ends any loop after 65535 rounds; a GPU would hang): does a loop's "
-                              "counter never reach its bound?",
-                              graded.name.c_str(), taken, rule);
-                out.error("stage", "loop", "runaway", message);
-            }
-        } catch (const std::exception&) {
-            // A scene that failed to render has already said why.
-        }
-        return;
     }
 }
 
@@ -140,7 +138,6 @@ int gradeWorkerCommand(int argc, char** argv) {
     std::map<std::string, Volume> volumes;
     RenderEngine engine(implementation);
     renderScenes(manifest, volumes, engine, out);
-    checkForRunawayLoop(manifest, volumes, engine, out);
     for (const GradedCheck& check : manifest.checks) {
         try {
             out.check(check.name, runFunctionCheck(check.name, implementation));

@@ -221,9 +221,6 @@ int checkCommand(int argc, char** argv) {
     options.isolateStage = false;
     options.hiddenScenes = false;
     const fs::path root = projectRoot();
-    options.referenceRoot = fs::is_directory(root / "reference") ? (root / "reference").string()
-                                                                 : args.get("submission").value_or((root / "assignments").string());
-    assignmentFrom(args, options);
     const fs::path out = args.get("out").value_or("voxlab-check");
     const std::string tree = args.get("submission").value_or((root / "assignments").string());
     if (fs::is_directory(root / "expected")) {
@@ -234,6 +231,7 @@ int checkCommand(int argc, char** argv) {
         options.referenceRoot = (root / "reference").string();
         options.expectedDir = (out / ".expected").string();
     }
+    assignmentFrom(args, options);  // its stages and points, checked against the manifests just chosen
     fs::create_directories(out);
     const std::vector<json> reports = gradeSubmissions({{"your work", tree, out.string()}}, options);
     std::cout << summaryTable(reports[0]) << "report: " << (out / "index.html").string() << "\n";

@@ -131,6 +131,15 @@ def headings(text):
     return out
 
 
+def markdown_under(folder):
+    """(path, name relative to `folder`) of every Markdown file under it."""
+    for sub, _, names in os.walk(folder):
+        for n in sorted(names):
+            if n.endswith(".md"):
+                path = os.path.join(sub, n)
+                yield path, os.path.relpath(path, folder)
+
+
 def shipped_markdown(root):
     """(path, name in the release) of every Markdown file a release ships."""
     for item in SHIPPED:
@@ -138,11 +147,23 @@ def shipped_markdown(root):
         if os.path.isfile(path):
             yield path, "README_framework.md" if item == "README.md" else item
             continue
-        for folder, _, names in os.walk(path):
-            for n in sorted(names):
-                if n.endswith(".md"):
-                    full = os.path.join(folder, n)
-                    yield full, os.path.relpath(full, root)
+        for full, name in markdown_under(path):
+            yield full, os.path.join(item, name)
+
+
+def student_versions(files, problems):
+    """(path, name, text, student text) of each (path, name) in `files`; the
+    student text is None for an instructor-only file. A file with a markup
+    error adds it to `problems` and is left out."""
+    for path, name in files:
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        try:
+            student = student_text(text, name)
+        except MarkupError as e:
+            problems.append(str(e))
+            continue
+        yield path, name, text, student
 
 
 def check(root):
@@ -151,14 +172,7 @@ def check(root):
     student text lost a section (the template: goals, what to implement,
     pitfalls, run it, check it, reading)."""
     problems, files, left_out = [], 0, 0
-    for path, name in shipped_markdown(root):
-        with open(path, encoding="utf-8") as f:
-            text = f.read()
-        try:
-            student = student_text(text, name)
-        except MarkupError as e:
-            problems.append(str(e))
-            continue
+    for _, name, text, student in student_versions(shipped_markdown(root), problems):
         if student is None:
             left_out += 1
             continue
@@ -174,28 +188,16 @@ def release(out):
     """Rewrites every Markdown file under a release folder to its student
     text (removing instructor-only files), then checks what is left."""
     problems, files, removed = [], 0, 0
-    for folder, _, names in os.walk(out):
-        for n in sorted(names):
-            if not n.endswith(".md"):
-                continue
-            path = os.path.join(folder, n)
-            name = os.path.relpath(path, out)
-            with open(path, encoding="utf-8") as f:
-                text = f.read()
-            try:
-                student = student_text(text, name)
-            except MarkupError as e:
-                problems.append(str(e))
-                continue
-            if student is None:
-                os.remove(path)
-                removed += 1
-                continue
-            if student != text:
-                with open(path, "w", encoding="utf-8") as f:
-                    f.write(student)
-            files += 1
-            problems += problems_in(student, name)
+    for path, name, text, student in student_versions(markdown_under(out), problems):
+        if student is None:
+            os.remove(path)
+            removed += 1
+            continue
+        if student != text:
+            with open(path, "w", encoding="utf-8") as f:
+                f.write(student)
+        files += 1
+        problems += problems_in(student, name)
     return problems, files, removed
 
 

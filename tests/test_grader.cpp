@@ -445,6 +445,11 @@ TEST(GradeCommand, BatchWritesAGradebookAndCheckSaysWhatIsMissing) {
                                              " --out " + (root / "check_bob").string() + " --quiet",
                                          300);
     EXPECT_EQ(good.exitCode, 0) << good.out << good.err;
+    // In the full repository a self-check renders its expected images from
+    // reference/, and its report must not claim shipped golden images.
+    const std::string checkHtml = readFile(root / "check_bob" / "index.html");
+    EXPECT_NE(checkHtml.find("the reference solution"), std::string::npos);
+    EXPECT_EQ(checkHtml.find("shipped golden images"), std::string::npos);
     const CommandResult todo = runVoxlab("check --stage minip --submission " + (root / "class" / "carol").string() +
                                              " --out " + (root / "check_carol").string() + " --quiet",
                                          300);

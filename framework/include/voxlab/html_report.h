@@ -7,7 +7,8 @@
 //
 //   {
 //     "submission": "/path/to/alice", "name": "alice", "graded_at": "2026-11-22T07:10:00Z",
-//     "mode": "grade | check", "machine": "Mesa llvmpipe ...", "sandbox": ["pid, network and ipc namespaces", "landlock reads", ...],
+//     "mode": "grade | check", "against": "shipped | reference" (where the expected outputs came from),
+//     "machine": "Mesa llvmpipe ...", "sandbox": ["pid, network and ipc namespaces", "landlock reads", ...],
 //     "elapsed_s": 41.2,
 //     "score": 87.5, "max_score": 140,
 //     "stages": [

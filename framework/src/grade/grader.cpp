@@ -225,6 +225,7 @@ std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, c
         const Submission& sub = submissions[s];
         json report = {{"submission", absolute(sub.folder)}, {"name", sub.name}, {"graded_at", isoTime()},
                        {"mode", options.shipped || !options.isolateStage ? "check" : "grade"},
+                       {"against", options.shipped ? "shipped" : "reference"},
                        {"sandbox", sandboxLayers()},
                        {"elapsed_s", seconds[s]}};
         double score = 0.0, maxScore = 0.0;

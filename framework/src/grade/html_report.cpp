@@ -292,7 +292,9 @@ std::string header(const json& results, const json& stages) {
         if (!value.empty()) out += "<div><dt>" + std::string(term) + "</dt><dd>" + html::escape(value) + "</dd></div>";
     };
     meta("Graded", readableTime(html::text(results, "graded_at")));
-    meta("Against", mode == "check" ? "the shipped golden images" : mode == "grade" ? "the reference solution" : "");
+    // A self-check in the full repository renders its expected images from reference/.
+    const std::string against = html::text(results, "against");
+    meta("Against", against == "shipped" ? "the shipped golden images" : against == "reference" ? "the reference solution" : "");
     meta("Machine", html::text(results, "machine"));
     std::string isolation;
     if (results.contains("sandbox") && results["sandbox"].is_array())

@@ -10,10 +10,16 @@
 #   tools/setup.sh --grader only what grading needs (an autograder image:
 #                           tools/gradescope/): the packages for headless
 #                           rendering and the voxlab program, no viewer and
-#                           no tests. Works on Debian 12 and Ubuntu 22.04,
-#                           whose package names are the same.
+#                           no tests.
+#
+# Debian 12 and Ubuntu 22.04 (Gradescope's base image) name every package
+# the same; on Ubuntu most of them are in the "universe" component. A
+# package that apt cannot find stops the set-up with one line naming it.
 #
 # Environment: VOXLAB_BUILD_DIR (default: build), VOXLAB_JOBS (default: nproc).
+# For tests: VOXLAB_OS_RELEASE (another os-release file), and
+# VOXLAB_SETUP_DRY_RUN=1, which prints the system, its package list and the
+# missing packages, checks that apt offers them, and stops there.
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -22,11 +28,20 @@ jobs="${VOXLAB_JOBS:-$(nproc 2>/dev/null || echo 2)}"
 mode="${1:-run}"
 case "$mode" in
   run|--test|--test-all|--grader) ;;
-  -h|--help) sed -n '2,18p' "$0"; exit 0 ;;
+  -h|--help) sed -n '/^set -euo/q; 2,$p' "$0"; exit 0 ;;
   *) echo "setup.sh: unknown argument '$mode' (expected --test, --test-all, --grader or nothing)" >&2; exit 2 ;;
 esac
 
-# 1. System packages (Debian 12 names). Only the missing ones are installed.
+# 1. System packages, by the names Debian 12 and Ubuntu 22.04 share. Only the
+#    missing ones are installed.
+os_release="${VOXLAB_OS_RELEASE:-/etc/os-release}"
+os_field() { sed -n "s/^$1=//p" "$os_release" 2>/dev/null | head -n 1 | tr -d "\"'"; }
+distro=$(os_field ID) distro_version=$(os_field VERSION_ID)
+system="${distro:-unknown} ${distro_version:-?}"
+case "$system" in
+  "debian 12"|"ubuntu 22.04") ;;
+  *) echo "setup: $system is untested (Debian 12 and Ubuntu 22.04 are); trying their package names" >&2 ;;
+esac
 packages=(cmake make g++ pkg-config python3 libglm-dev libstb-dev libosmesa6-dev libegl-dev zlib1g-dev
           nlohmann-json3-dev khronos-api)
 [ "$mode" = --grader ] || packages+=(libglfw3-dev libimgui-dev libgtest-dev xvfb xauth)
@@ -34,11 +49,34 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# Stops with one line naming every package of "$@" that apt has no candidate for.
+require_available() {
+  local p policy candidate='Candidate: [^(]' unavailable=() hint=""
+  for p in "$@"; do
+    policy=$(LC_ALL=C apt-cache policy "$p" 2>/dev/null || true)
+    [[ $policy =~ $candidate ]] || unavailable+=("$p")
+  done
+  [ ${#unavailable[@]} -eq 0 ] && return 0
+  [ "$distro" = ubuntu ] && hint=" (on Ubuntu, enable the 'universe' component)"
+  echo "setup: not available from apt on $system: ${unavailable[*]}$hint" >&2
+  exit 1
+}
+if [ -n "${VOXLAB_SETUP_DRY_RUN:-}" ]; then
+  echo "setup: $system: ${packages[*]}"
+  echo "setup: missing: ${missing[*]:-none}"
+  [ ${#missing[@]} -eq 0 ] || require_available "${missing[@]}"
+  exit 0
+fi
 if [ ${#missing[@]} -gt 0 ]; then
+  if ! command -v apt-get >/dev/null; then
+    echo "setup: no apt-get on $system: install these by hand: ${missing[*]}" >&2
+    exit 1
+  fi
   echo "setup: installing ${missing[*]}"
   sudo=""
   [ "$(id -u)" -ne 0 ] && sudo="sudo"
   $sudo apt-get update -qq
+  require_available "${missing[@]}"
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 

@@ -458,6 +458,31 @@ TEST(GradeCommand, BatchWritesAGradebookAndCheckSaysWhatIsMissing) {
     const CommandResult bad = runVoxlab("grade --submission " + (root / "class" / "bob").string() + " --stage nope");
     EXPECT_NE(bad.exitCode, 0);
     EXPECT_NE(bad.err.find("unknown stage 'nope'"), std::string::npos) << bad.err;
+    // The reference's compiled C++ stages serve the stage runs only: no
+    // report folder keeps them (a report may be handed to a student).
+    EXPECT_FALSE(fs::exists(root / "reports" / ".expected" / "reference_stages.so"));
+    EXPECT_FALSE(fs::exists(root / "check_bob" / ".expected" / "reference_stages.so"));
+}
+
+// `grade --render-expected DIR` (what a student release ships as expected/)
+// leaves the expected outputs alone in DIR: the images and check results of
+// the visible scenes and checks, and neither the reference's compiled C++
+// stages (the solution, compiled), which the stage runs loaded while
+// rendering, nor their work folders.
+TEST(GradeCommand, RenderExpectedLeavesOnlyTheExpectedOutputs) {
+    const fs::path out = scratch("render_expected") / "expected";
+    const CommandResult r = runVoxlab("grade --render-expected " + out.string() + " --stage mip --jobs 1 --quiet", 300);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::vector<std::string> files;
+    for (const auto& e : fs::recursive_directory_iterator(out)) files.push_back(fs::relative(e.path(), out).string());
+    std::sort(files.begin(), files.end());
+    std::vector<std::string> want = {"mip", "mip/checks"};
+    const StageManifest mip = loadStageManifest((kSource / "reference").string(), "mip");
+    for (const GradedScene& scene : mip.scenes)
+        if (!scene.hidden) want.push_back("mip/" + scene.name + ".png");
+    for (const GradedCheck& check : mip.checks) want.push_back("mip/checks/" + check.name + ".json");
+    std::sort(want.begin(), want.end());
+    EXPECT_EQ(files, want);  // no reference_stages.so, no .work, no hidden scene
 }
 
 }  // namespace

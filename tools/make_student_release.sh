@@ -99,7 +99,6 @@ python3 "$root/tools/student_text.py" --release "$out" >/dev/null
 # The expected outputs, rendered by the reference on this machine.
 step 5 "rendering expected/ with the reference (every stage's scenes and checks)"
 LP_NUM_THREADS="${LP_NUM_THREADS:-2}" "$build/bin/voxlab" grade --render-expected "$out/expected" --quiet >/dev/null
-rm -f "$out/expected/reference_stages.so"
 
 # No solution may leak: no mutant suite (its substitutions quote the solution),
 # no markers, and no non-trivial solution line.
@@ -107,6 +106,12 @@ step 6 "checking that no solution text and no hidden scene was shipped"
 if find "$out" -name mutants.json | grep -q .; then
   echo "make_student_release: a stage's mutants.json was shipped:" >&2
   find "$out" -name mutants.json >&2
+  exit 1
+fi
+
+if [ -n "$(find "$out" -name "*.so" -print -quit)" ]; then
+  echo "make_student_release: a compiled library was shipped (the reference's C++ stages are the solution):" >&2
+  find "$out" -name "*.so" >&2
   exit 1
 fi
 

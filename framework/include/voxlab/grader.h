@@ -32,7 +32,8 @@ struct GraderOptions {
     std::string referenceRoot;    // grading manifests and, when rendering them, the expected outputs
     std::string expectedDir;      // expected outputs: rendered here from referenceRoot unless `shipped`
     bool shipped = false;         // expectedDir already holds the outputs (a release's goldens, or
-                                  // an earlier renderExpectedOutputs): do not render them again
+                                  // an earlier renderExpectedOutputs): do not render them again; the
+                                  // stages not graded then run this program's own C++ stages
     bool isolateStage = true;     // false for a self-check: the submission's whole tree runs
     bool hiddenScenes = true;     // grade scenes marked "hidden" (false: `voxlab check`, a release's goldens)
     std::vector<std::string> stages;  // empty: every stage with a manifest, in teaching order
@@ -56,7 +57,12 @@ struct Submission {
 };
 
 // Renders the expected outputs of `options.stages` from the reference into
-// options.expectedDir (what a student release ships as goldens).
+// options.expectedDir (what a student release ships as goldens). The
+// reference's C++ stages, compiled to EXPECTED/reference_stages.so for the
+// stage runs, are removed when it returns or throws: the folder keeps
+// EXPECTED/<stage>/<scene>.png and EXPECTED/<stage>/checks/<check>.json only.
+// gradeSubmissions() without `shipped` renders them the same way and keeps
+// the library until its grading ends.
 void renderExpectedOutputs(const GraderOptions& options);
 
 // Grades every submission; returns their report.json contents, in order.

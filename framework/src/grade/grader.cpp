@@ -125,9 +125,31 @@ void renderExpectedStage(const std::string& stage, const GraderOptions& options)
         writeFileAtomically((out / "checks" / (name + ".json")).string(), result.dump() + "\n");
 }
 
-}  // namespace
+// The reference's C++ stages, compiled for the stage runs (stage_job.cpp
+// loads them into every worker). The solution, compiled: it is no expected
+// output, and a report folder may be handed to a student.
+fs::path referenceLibrary(const GraderOptions& options) {
+    return fs::path(absolute(options.expectedDir)) / "reference_stages.so";
+}
 
-void renderExpectedOutputs(const GraderOptions& given) {
+// Removes a file when the run that made it ends, however it ends.
+class RemovedAtEnd {
+public:
+    explicit RemovedAtEnd(fs::path path) : path_(std::move(path)) {}
+    RemovedAtEnd(const RemovedAtEnd&) = delete;
+    RemovedAtEnd& operator=(const RemovedAtEnd&) = delete;
+    ~RemovedAtEnd() {
+        std::error_code ec;
+        if (!path_.empty()) fs::remove(path_, ec);
+    }
+
+private:
+    fs::path path_;
+};
+
+// renderExpectedOutputs, leaving the reference library in place for the
+// stage runs that follow.
+void renderExpectedWithLibrary(const GraderOptions& given) {
     GraderOptions options = given;
     options.referenceRoot = absolute(options.referenceRoot);
     options.expectedDir = absolute(options.expectedDir);
@@ -144,7 +166,7 @@ void renderExpectedOutputs(const GraderOptions& given) {
     if (!sources.empty()) {
         ChildLimits limits;
         limits.seconds = 300.0;
-        const std::string library = (fs::path(options.expectedDir) / "reference_stages.so").string();
+        const std::string library = referenceLibrary(options).string();
         const ChildResult built = runChild(stageLibraryBuildCommand(sources, library), limits);
         if (!built.succeeded()) throw Error("the reference's C++ stages do not compile:\n" + built.output);
     }
@@ -163,12 +185,22 @@ void renderExpectedOutputs(const GraderOptions& given) {
         if (!f.empty()) throw Error("rendering the expected outputs: " + f);
 }
 
+}  // namespace
+
+void renderExpectedOutputs(const GraderOptions& options) {
+    const RemovedAtEnd library(referenceLibrary(options));
+    renderExpectedWithLibrary(options);
+}
+
 std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, const GraderOptions& given) {
     GraderOptions options = given;
     options.referenceRoot = absolute(options.referenceRoot);
     options.expectedDir = absolute(options.expectedDir);
     const std::vector<std::string> stages = chosenStages(options);
-    if (!options.shipped) renderExpectedOutputs(options);
+    // Rendered here, the expected outputs come with the reference library,
+    // which the graded stages load and which goes when grading ends.
+    const RemovedAtEnd library(options.shipped ? fs::path() : referenceLibrary(options));
+    if (!options.shipped) renderExpectedWithLibrary(options);
 
     struct Job {
         std::size_t submission;

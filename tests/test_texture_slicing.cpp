@@ -591,5 +591,34 @@ TEST_F(GlTest, ConstantSlabHasTheAnalyticTransmittanceAtEveryAngle) {
     }
 }
 
+// The wireframe of a lecture demo outlines every n-th proxy polygon, so the
+// slicing stays visible at any step. With every polygon outlined, the
+// default step (about 200 polygons across a 64-voxel cube) paints the
+// box's faces solid, and a finer step only makes it more so. Oracle: the
+// share of the image the outlines cover, with a transparent volume (only
+// outlines draw), is the same order at steps 0.5 and 0.1 (within 2x) and
+// well below the box's own share of the image.
+TEST_F(GlTest, TheWireframeShowsTheSlicesAtAnyStep) {
+    const Volume v = byteVolume(glm::ivec3(64), [](int, int, int) { return 100; });
+    engine().setVolume(v);
+    Scene scene = orbitScene(30.0, 20.0, 128, Projection::Orthographic);
+    scene.transferFunction = TransferFunction({{0.0, glm::vec3(1.0f), 0.0f}, {255.0, glm::vec3(1.0f), 0.0f}});
+    scene.parameters["wireframe"] = 1.0;
+    const auto covered = [&](double step) {
+        return double(shownPixels(renderSlices3d(scene, step), glm::vec3(0.0f))) / (128.0 * 128.0);
+    };
+    // The box's own share: the same view of an opaque cube.
+    Scene opaque = scene;
+    opaque.parameters["wireframe"] = 0.0;
+    opaque.transferFunction = TransferFunction({{0.0, glm::vec3(1.0f), 1.0f}, {255.0, glm::vec3(1.0f), 1.0f}});
+    const double box = double(shownPixels(renderSlices3d(opaque, 0.5), glm::vec3(0.0f))) / (128.0 * 128.0);
+    const double coarse = covered(0.5), fine = covered(0.1);
+    std::printf("outlines cover %.3f of the image at step 0.5, %.3f at step 0.1; the box %.3f\n", coarse, fine, box);
+    EXPECT_GT(coarse, 0.02) << "no outlines";
+    EXPECT_LT(coarse, 0.6 * box) << "the outlines fill the box";
+    EXPECT_LT(fine, 0.6 * box) << "a finer step fills the box";
+    EXPECT_LT(std::max(coarse, fine) / std::min(coarse, fine), 2.0);
+}
+
 }  // namespace
 }  // namespace voxlab::testing

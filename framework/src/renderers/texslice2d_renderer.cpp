@@ -24,7 +24,7 @@ std::string Texslice2dRenderer::description() const {
 std::vector<ParameterSpec> Texslice2dRenderer::parameters() const {
     return {{"slices_per_voxel", ParameterType::Int, 1, 8, 1,
              "slices per voxel layer; in-between slices blend the two nearest layers"},
-            {"wireframe", ParameterType::Bool, 0, 1, 0, "outline the slices drawn (lecture demo)"}};
+            {"wireframe", ParameterType::Bool, 0, 1, 0, "outline every n-th slice drawn, about 24 per stack at any step (lecture demo)"}};
 }
 
 void Texslice2dRenderer::draw(DrawContext& ctx, const ParameterValues& values) const {

@@ -19,7 +19,7 @@ std::string Texslice3dRenderer::description() const {
 
 std::vector<ParameterSpec> Texslice3dRenderer::parameters() const {
     std::vector<ParameterSpec> p = {
-        {"wireframe", ParameterType::Bool, 0, 1, 0, "outline the proxy polygons (lecture demo)"}};
+        {"wireframe", ParameterType::Bool, 0, 1, 0, "outline every n-th proxy polygon, about 24 across the box at any step (lecture demo)"}};
     for (ParameterSpec& s : shadingParameters(false)) p.push_back(s);
     return p;
 }

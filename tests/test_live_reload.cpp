@@ -19,6 +19,33 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The files watched for edits are real paths from any working folder. (The
+// programs name their files relative to the project's root, for messages;
+// the watcher once used those names, so a viewer started outside the root
+// never saw an edit.) Also the files of the last render, which name the
+// student's stage folders the checkerboard's line is made from.
+TEST(LiveReload, TheWatchedFilesAreFoundFromAnyWorkingFolder) {
+    auto context = createHeadlessContext();
+    const fs::path before = fs::current_path();
+    fs::current_path("/");
+    RenderEngine engine(std::string(VOXLAB_SOURCE_DIR) + "/assignments");
+    const Volume volume = makePhantom("phantom:sphere:16");
+    engine.setVolume(volume);
+    Scene scene;
+    scene.renderer = "mip";
+    scene.width = scene.height = 16;
+    engine.render(scene);
+    const auto sources = engine.shaderSources();
+    const auto last = engine.lastRenderSources();
+    fs::current_path(before);
+    ASSERT_FALSE(sources.empty());
+    for (const std::string& f : sources) EXPECT_TRUE(fs::path(f).is_absolute() && fs::exists(f)) << f;
+    const fs::path mip = fs::path(VOXLAB_SOURCE_DIR) / "assignments" / "mip" / "mip.glsl";
+    bool found = false;
+    for (const std::string& f : last) found = found || fs::equivalent(f, mip);
+    EXPECT_TRUE(found) << "the last render's files miss assignments/mip/mip.glsl";
+}
+
 TEST(LiveReload, ABrokenEditKeepsTheLastGoodShaderAndSaysWhy) {
     auto context = createHeadlessContext();
     const fs::path root = fs::path(::testing::TempDir()) / ("voxlab_reload_" + std::to_string(getpid()));

@@ -92,8 +92,12 @@ public:
     // compiled throws ShaderError as usual.
     void reloadShaders();
     const std::string& shaderError() const { return shaderError_; }
-    // Every shader file the current programs were built from (to watch for edits).
+    // Every shader file the current programs were built from (to watch for
+    // edits), as paths that work from any working folder.
     std::vector<std::string> shaderSources() const;
+    // The shader files of the renderer's program in the last render (the
+    // viewer names the stubs that render reached).
+    const std::vector<std::string>& lastRenderSources() const { return lastRenderSources_; }
     // The colour texture of the offscreen framebuffer (RGBA32F), for
     // compositing two engines' images (the viewer's split view).
     unsigned offscreenTexture() const { return colorTexture_; }
@@ -154,6 +158,7 @@ private:
     int layerWidth_ = 0, layerHeight_ = 0;
     float valueScale_ = 1.0f, valueOffset_ = 0.0f;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_;
+    std::vector<std::string> lastRenderSources_;
     std::map<std::string, std::unique_ptr<ShaderProgram>> previousPrograms_;  // before the last reload
     std::string shaderError_;
     TransferFunctionSlot tf_[2];  // the scene's, and the cutting plane's other side

@@ -206,12 +206,24 @@ void RenderEngine::reloadShaders() {
     shaderError_.clear();
 }
 
+namespace {
+
+// A program's files are named for messages: relative to the project's root
+// when inside it. Watching them needs paths that work from any folder.
+std::string filePath(const std::string& shown) {
+    return std::filesystem::path(shown).is_absolute() ? shown : projectRoot() + "/" + shown;
+}
+
+}  // namespace
+
 std::vector<std::string> RenderEngine::shaderSources() const {
     std::vector<std::string> files;
     for (const auto* programs : {&programs_, &previousPrograms_})
         for (const auto& [key, prog] : *programs)
-            for (const std::string& f : prog->sourceFiles())
+            for (const std::string& shown : prog->sourceFiles()) {
+                const std::string f = filePath(shown);
                 if (std::find(files.begin(), files.end(), f) == files.end()) files.push_back(f);
+            }
     return files;
 }
 
@@ -333,6 +345,8 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     for (const ParameterSpec& p : renderer.parameters())
         if (p.type == ParameterType::Bool) constants["u_" + p.name] = pass.values.at(p.name) != 0.0 ? 1 : 0;
     const ShaderProgram& prog = program(renderer.vertexShader(), renderer.fragmentShader(), constants);
+    lastRenderSources_.clear();
+    for (const std::string& shown : prog.sourceFiles()) lastRenderSources_.push_back(filePath(shown));
     prog.use();
 
     glActiveTexture(GL_TEXTURE0 + kVolumeUnit);

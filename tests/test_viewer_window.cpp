@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -68,11 +69,11 @@ protected:
         fs::create_directories(dir_);
     }
     std::string path(const std::string& name) const { return (dir_ / name).string(); }
-    CommandResult play(const std::string& script) {
+    CommandResult play(const std::string& script, const std::string& options = "") {
         std::ofstream(path("script.vs")) << script;
         return runShell("xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(VOXLAB_BINARY) +
                             " view --script " + path("script.vs") + " --window-size 640x400 --student " +
-                            std::string(VOXLAB_SOURCE_DIR) + "/assignments",
+                            std::string(VOXLAB_SOURCE_DIR) + "/assignments " + options,
                         240);
     }
     fs::path dir_;
@@ -106,6 +107,7 @@ TEST_F(ViewerWindow, AScriptedSessionShowsEveryPart) {
     // Dragging renders reduced images, then one at full quality (640x400).
     EXPECT_NE(r.out.find("drag: 3 frames"), std::string::npos) << r.out;  // the first step renders the first
     EXPECT_NE(r.out.find("idle, full quality 640x400"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("refinement step"), std::string::npos) << r.out;
     for (const char* name : {"mip.png", "split.png", "difference.png", "panels.png"}) {
         ASSERT_TRUE(fs::exists(path(name))) << name << "\n" << r.out << r.err;
         const Image img = loadPng(path(name));
@@ -219,6 +221,139 @@ TEST_F(ViewerWindow, AStudentReleaseComparesWithTheExpectedImage) {
     std::printf("mean grey of the difference view: correct %.4f, maximum starting at 0 %.4f\n", correct, buggy);
     EXPECT_LT(correct, 0.01);
     EXPECT_GT(buggy, 0.2);
+}
+
+// Pixels of one colour (within 0.12 per channel) in a region.
+int countColour(const Image& img, Region r, glm::vec3 colour) {
+    int n = 0;
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x) {
+            const glm::vec3 d = glm::abs(glm::vec3(img.at(x, y)) - colour);
+            if (std::max({d.r, d.g, d.b}) < 0.12f) ++n;
+        }
+    return n;
+}
+
+// A lecture's deck: five slides, each its own renderer, dataset, transfer
+// function and caption, stepped by the arrow keys as a lecturer presses
+// them (the key goes through GLFW's key callback, the same path a keyboard
+// takes). Right at the last slide stays there; Left goes back; Home to the
+// first, which looks as it did the first time.
+TEST_F(ViewerWindow, ADeckOfFiveScenesStepsByArrowKey) {
+    std::ofstream(path("talk.json")) << R"({"title": "test", "slides": [
+      {"scene": {"dataset": "tooth.nrrd", "renderer": "mip"}, "caption": "one: MIP"},
+      {"scene": {"dataset": "tooth.nrrd", "renderer": "composite", "transfer_function": "tf/tooth.json"},
+       "caption": "two: compositing"},
+      {"scene": {"dataset": "phantom:marschner-lobb:48", "renderer": "iso"}, "caption": "three: isosurface"},
+      {"scene": {"dataset": "tooth.nrrd", "renderer": "slicer", "camera": {"view": "+z"}}, "caption": "four: a slice"},
+      {"scene": {"dataset": "tooth.nrrd", "renderer": "tf2d", "tf2d": "tf2d/tooth.json"}, "caption": "five: 2D TF"}]})";
+    std::string script;
+    for (int i = 1; i <= 5; ++i) script += "screenshot " + path("s" + std::to_string(i) + ".png") + "\nkey right\n";
+    script += "key left\nscreenshot " + path("back.png") + "\nkey home\nscreenshot " + path("home.png") + "\nquit\n";
+    const CommandResult r = play(script, "--deck " + path("talk.json"));
+    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    // The slides in the order the keys chose; Right on the last one changes nothing.
+    std::string order;
+    for (std::size_t at = r.out.find("slide "); at != std::string::npos; at = r.out.find("slide ", at + 1))
+        order += r.out.substr(at + 6, 1);
+    EXPECT_EQ(order, "1234541") << r.out;
+    EXPECT_NE(r.out.find("slide 3/5: iso: three: isosurface"), std::string::npos) << r.out;
+    std::vector<Image> shots;
+    for (int i = 1; i <= 5; ++i) shots.push_back(loadPng(path("s" + std::to_string(i) + ".png")));
+    const Region image{0, 0, 640, 330}, caption{120, 330, 520, 380};
+    for (int i = 1; i < 5; ++i) {
+        EXPECT_GT(meanDifference(shots[i], shots[i - 1], image), 0.01) << "slide " << i + 1 << " looks like slide " << i;
+        EXPECT_GT(meanDifference(shots[i], shots[i - 1], caption), 0.01) << "slide " << i + 1 << "'s caption";
+    }
+    for (const Image& shot : shots) EXPECT_GT(stats(shot, caption).spread, 0.1) << "no caption under the image";
+    EXPECT_LT(meanDifference(loadPng(path("back.png")), shots[3], {0, 0, 640, 400}), 0.003) << "Left after the end";
+    EXPECT_LT(meanDifference(loadPng(path("home.png")), shots[0], {0, 0, 640, 400}), 0.003) << "Home";
+    // A deck that names an unknown renderer fails before any window, naming the slide.
+    std::ofstream(path("bad.json")) << R"({"slides": [{"scene": {"dataset": "tooth.nrrd", "renderer": "mpi"}}]})";
+    const CommandResult bad = runShell(std::string(VOXLAB_BINARY) + " view --deck " + path("bad.json"), 60);
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.err.find("bad.json: slide 1: renderer 'mpi' is not known"), std::string::npos) << bad.err;
+}
+
+// Presentation mode: at --ui-scale 2 the control panel (its blue title bar)
+// is twice as wide and twice as tall as at 1, and the + key grows it by a
+// quarter. (A 1000x700 window: the panel at 2.25 still fits.)
+TEST_F(ViewerWindow, TheUiScaleMakesThePanelsLarger) {
+    const CommandResult r = play("size 1000 700\nload tooth.nrrd\nrenderer slicer\npanel tf off\nwait 1\nscreenshot " +
+                                 path("one.png") + "\nui-scale 2\nwait 2\nscreenshot " + path("two.png") +
+                                 "\nkey plus\nwait 2\nscreenshot " + path("more.png") + "\nquit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    // The title bar: ImGui's dark style draws it (0.16, 0.29, 0.48).
+    auto titleBar = [&](const std::string& name) {
+        const Image img = loadPng(path(name));
+        int width = 0, height = 0;  // of the first band of such rows from the top
+        for (int y = 0; y < img.height; ++y) {
+            int row = 0;
+            for (int x = 0; x < img.width; ++x) {
+                const glm::vec4 c = img.at(x, y);
+                if (std::abs(c.r - 0.16f) < 0.05f && std::abs(c.g - 0.29f) < 0.05f && std::abs(c.b - 0.48f) < 0.05f) ++row;
+            }
+            if (row > 20) ++height, width = std::max(width, row);
+            else if (height > 0) break;
+        }
+        return std::pair<int, int>(width, height);
+    };
+    const auto [w1, h1] = titleBar("one.png");
+    const auto [w2, h2] = titleBar("two.png");
+    const auto [w3, h3] = titleBar("more.png");
+    std::printf("title bar: %dx%d at 1, %dx%d at 2, %dx%d after +\n", w1, h1, w2, h2, w3, h3);
+    ASSERT_GT(w1, 100);
+    EXPECT_NEAR(double(w2) / w1, 2.0, 0.15);
+    EXPECT_NEAR(double(h2) / h1, 2.0, 0.3);
+    EXPECT_GT(w3, w2);
+}
+
+// The checkerboard explained: the student's starter code names its stubs in
+// the terminal and over the image (amber text); the reference names none.
+TEST_F(ViewerWindow, TheCheckerboardSaysWhichFunctionsAreMissing) {
+    const CommandResult student = play("load tooth.nrrd\nrenderer mip\npanel tf off\npanel controls off\n"
+                                       "implementation student\nwait 2\nscreenshot " + path("student.png") + "\nquit\n");
+    ASSERT_EQ(student.exitCode, 0) << student.out << student.err;
+    EXPECT_NE(student.err.find("not yet implemented"), std::string::npos) << student.err;
+    EXPECT_NE(student.err.find("mip/: mip_ray()"), std::string::npos) << student.err;
+    EXPECT_NE(student.err.find("voxlab check"), std::string::npos) << student.err;
+    const CommandResult reference = play("load tooth.nrrd\nrenderer mip\npanel tf off\npanel controls off\n"
+                                         "wait 2\nscreenshot " + path("reference.png") + "\nquit\n");
+    ASSERT_EQ(reference.exitCode, 0) << reference.err;
+    EXPECT_EQ(reference.err.find("not yet implemented"), std::string::npos) << reference.err;
+    const Region banner{60, 0, 580, 60};
+    const glm::vec3 amber(1.0f, 200 / 255.0f, 90 / 255.0f);
+    EXPECT_GT(countColour(loadPng(path("student.png")), banner, amber), 30) << "no line over the image";
+    EXPECT_EQ(countColour(loadPng(path("reference.png")), banner, amber), 0);
+}
+
+// The ray profile's pixel is marked on the image while the camera is the
+// one the profile was taken with.
+TEST_F(ViewerWindow, ThePixelOfTheRayProfileIsMarked) {
+    const CommandResult r = play("load tooth.nrrd\nrenderer mip\npanel tf off\npanel controls off\n"
+                                 "panel profile on\nclick 200 150\nwait 2\nscreenshot " + path("marked.png") +
+                                 "\nrotate 10 0\nwait 2\nscreenshot " + path("moved.png") + "\nquit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    const glm::vec3 yellow(1.0f, 230 / 255.0f, 60 / 255.0f);
+    const Region around{170, 120, 230, 180}, elsewhere{60, 240, 120, 300};
+    EXPECT_GT(countColour(loadPng(path("marked.png")), around, yellow), 20) << "no marker at the clicked pixel";
+    EXPECT_EQ(countColour(loadPng(path("marked.png")), elsewhere, yellow), 0);
+    EXPECT_EQ(countColour(loadPng(path("moved.png")), around, yellow), 0) << "the marker outlived its camera";
+}
+
+// --keep-open: the script prepares the state, then the window stays for a
+// person (here nobody comes, and the time limit ends it); without it the
+// viewer closes at the end of the script.
+TEST_F(ViewerWindow, KeepOpenLeavesTheWindowToThePersonAfterTheScript) {
+    std::ofstream(path("prepare.vs")) << "load tooth.nrrd\nrenderer mip\nwait 1\n";
+    const std::string view = "xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(VOXLAB_BINARY) +
+                             " view --window-size 320x240 --script " + path("prepare.vs");
+    const CommandResult closes = runShell(view, 120);
+    EXPECT_EQ(closes.exitCode, 0) << closes.err;
+    const CommandResult stays = runShell(view + " --keep-open", 25);
+    EXPECT_EQ(stays.exitCode, 124) << "the window closed by itself: " << stays.out << stays.err;
+    const CommandResult alone = runShell(std::string(VOXLAB_BINARY) + " view --keep-open", 30);
+    EXPECT_NE(alone.err.find("--keep-open goes with --script"), std::string::npos) << alone.err;
 }
 
 }  // namespace

@@ -116,6 +116,11 @@ public:
     // even when the scene has none (compositing cannot do without one: the
     // engine then supplies a grey ramp over the window, see render_engine.h).
     virtual bool needsTransferFunction() const { return false; }
+    // Whether the image depends on the 1D transfer function at all, when the
+    // scene has one (the viewer hides the editor otherwise). Most renderers
+    // colour by it; an isosurface has a colour of its own, and tf2d has the
+    // 2D function instead.
+    virtual bool usesTransferFunction() const { return true; }
     // The same for the 2D transfer function (the engine's fallback is one
     // of Levoy's triangles at the middle of the window).
     virtual bool needsTransferFunction2D() const { return false; }

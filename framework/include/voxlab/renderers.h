@@ -81,6 +81,7 @@ public:
     std::vector<ParameterSpec> parameters() const override;
     EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
     ProfileModel profileModel() const override { return ProfileModel::Isosurface; }
+    bool usesTransferFunction() const override { return false; }
 };
 
 class Tf2dRenderer final : public Renderer {
@@ -89,6 +90,7 @@ public:
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
     bool needsTransferFunction2D() const override { return true; }
+    bool usesTransferFunction() const override { return false; }
     EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
 };
 
@@ -122,7 +124,12 @@ std::vector<ParameterSpec> shadingParameters(bool shadingByDefault);
 // Compositing: early_termination, back_to_front, jitter.
 std::vector<ParameterSpec> compositingParameters();
 // Draws the texture slicers' convex polygons in the order given (back to
-// front), and their outlines on top when `outline` is set.
+// front), and, when `outline` is set, the outlines of every n-th polygon on
+// top: n keeps about kOutlinedSlices outlines whatever the step, since at
+// the default step (hundreds of polygons) outlining all of them paints a
+// solid box and hides the structure the wireframe is there to show.
+constexpr int kOutlinedSlices = 24;
 void drawSlicePolygons(DrawContext& ctx, const std::vector<std::vector<glm::dvec3>>& polygons, bool outline);
+int outlineStride(std::size_t polygons);  // n for that many polygons (>= 1)
 
 }  // namespace voxlab

@@ -61,6 +61,9 @@ public:
 
     // Bilinear filtering of the slice images (off: each voxel is a sharp square).
     bool smooth = false;
+    // One view alone, filling the panel (a double click on a view toggles
+    // it), or -1: all three.
+    int enlarged = -1;
     // Coronal and sagittal views with z growing upwards, as orthogonal_slices.h
     // states. Off flips them on screen (z grows downwards), which stands up
     // volumes stored from the top of the head down (cthead, headsq). Mouse and

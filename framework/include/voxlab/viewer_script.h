@@ -12,6 +12,7 @@
 //   step X                         sampling step (voxels), > 0
 //   interpolation nearest|trilinear|hardware
 //   tf PATH|none                   a transfer-function file, or none
+//   tf2d PATH|none                 a 2D transfer-function file (tf2d renderer), or none
 //   camera SETTING VALUE...        settings: azimuth A, elevation E, distance D,
 //                                  fov F, zoom Z, pan X Y, view +x|-x|+y|-y|+z|-z,
 //                                  projection perspective|orthographic
@@ -28,7 +29,13 @@
 //   right RENDERER|same            the right side's technique (default: the same as the left)
 //   implementation DIR|reference|student   what the left side (or the only view) runs
 //   panel slices|tf|tf2d|profile|help|controls on|off
+//   enlarge axial|coronal|sagittal|off   the slices panel with one view enlarged (off: all three)
 //   click X Y                      a left click at window pixel (X, Y)
+//   key left|right|up|down|pageup|pagedown|home|end|plus|minus
+//                                  press and release a key, as a person would (a deck's
+//                                  arrows, the UI scale's + and -)
+//   ui-scale X                     the UI's scale (presentation mode), 0.75 to 4
+//   slide N                        a deck's slide N (1-based; voxlab view --deck)
 //   size WIDTH HEIGHT              window size in pixels
 //   wait N                         render N frames
 //   screenshot PATH                save the window as PNG

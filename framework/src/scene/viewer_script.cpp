@@ -95,7 +95,25 @@ public:
         if (c == "renderer") return exactly(1, "expected 1 renderer name");
         if (c == "implementation") return exactly(1, "expected a folder or 'reference'");
         if (c == "screenshot") return exactly(1, "expected 1 output path");
-        if (c == "tf") return exactly(1, "expected 1 path or 'none'");
+        if (c == "tf" || c == "tf2d") return exactly(1, "expected 1 path or 'none'");
+        if (c == "key")
+            return oneWord("expected a key: left, right, up, down, pageup, pagedown, home, end, plus or minus",
+                           {"left", "right", "up", "down", "pageup", "pagedown", "home", "end", "plus", "minus"});
+        if (c == "ui-scale") {
+            const char* msg = "expected 1 number in [0.75, 4]";
+            exactly(1, msg);
+            const double x = numberAt(0, msg);
+            if (!(x >= 0.75 && x <= 4.0)) fail(msg, 0);
+            return;
+        }
+        if (c == "enlarge")
+            return oneWord("expected axial, coronal, sagittal or off", {"axial", "coronal", "sagittal", "off"});
+        if (c == "slide") {
+            const char* msg = "expected 1 slide number >= 1";
+            exactly(1, msg);
+            if (integerAt(0, msg) < 1) fail(msg, 0);
+            return;
+        }
         if (c == "quit") return exactly(0, "expected no arguments");
         if (c == "right") return exactly(1, "expected a renderer name or 'same'");
         if (c == "divider") {
@@ -222,8 +240,8 @@ private:
 };
 
 constexpr const char* kCommands[] = {
-    "load", "scene", "renderer", "param", "step", "interpolation", "tf", "camera", "rotate",
-    "window", "samples", "skipping", "split", "divider", "right", "drag", "implementation", "panel", "click", "size", "wait", "screenshot", "quit"};
+    "load", "scene", "renderer", "param", "step", "interpolation", "tf", "tf2d", "camera", "rotate",
+    "key", "ui-scale", "slide", "enlarge", "window", "samples", "skipping", "split", "divider", "right", "drag", "implementation", "panel", "click", "size", "wait", "screenshot", "quit"};
 
 }  // namespace
 

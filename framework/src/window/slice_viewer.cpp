@@ -240,7 +240,15 @@ bool SliceViewer::drawContents(const Volume& volume, SliceCursor* cursor) {
     const glm::dvec3 spacing = volume.spacing();
     const glm::dvec3 worldSize = volume.extent();
     Cell cells[3], spare;
-    const float scale = layoutViews(worldSize, origin, avail, 6.0f, cells, &spare);
+    if (enlarged < 0 || enlarged > 2) enlarged = -1;
+    float scale = layoutViews(worldSize, origin, avail, 6.0f, cells, &spare);
+    if (enlarged >= 0) {  // one view fills the space
+        const glm::dvec2 world = sliceWorldSize(dims, spacing, enlarged);
+        scale = float(std::max(1e-6, std::min(avail.x / world.x, avail.y / world.y)));
+        cells[enlarged] = Cell{origin, origin + avail};
+        spare = Cell{origin, origin};
+    }
+    const auto shown = [&](int axis) { return enlarged < 0 || axis == enlarged; };
 
     // Screen rows run against the image's rows in coronal and sagittal views when z grows downwards.
     const auto displayRow = [&](int axis, int row) {
@@ -251,6 +259,10 @@ bool SliceViewer::drawContents(const Volume& volume, SliceCursor* cursor) {
     ImGuiIO& io = ImGui::GetIO();
     for (int axis = 0; axis < 3; ++axis) {
         View& view = views_[axis];
+        if (!shown(axis)) {
+            view.imageMin = view.imageMax = origin;
+            continue;
+        }
         const glm::dvec2 world = sliceWorldSize(dims, spacing, axis);
         const ImVec2 size(std::max(1.0f, std::round(float(world.x) * scale)),
                           std::max(1.0f, std::round(float(world.y) * scale)));
@@ -263,6 +275,9 @@ bool SliceViewer::drawContents(const Volume& volume, SliceCursor* cursor) {
         ImGui::PushID(axis);
         ImGui::InvisibleButton("view", size, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
         ImGui::PopID();
+        if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left))
+            enlarged = enlarged < 0 ? axis : -1;
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("double click: %s", enlarged < 0 ? "enlarge" : "all three views");
         const glm::ivec2 imageSize = sliceImageSize(dims, axis);
         glm::ivec2 pixel = pixelUnder(io.MousePos, view.imageMin, view.imageMax, imageSize);
         pixel.y = displayRow(axis, pixel.y);
@@ -293,6 +308,7 @@ bool SliceViewer::drawContents(const Volume& volume, SliceCursor* cursor) {
     ImDrawList* list = ImGui::GetWindowDrawList();
     for (int axis = 0; axis < 3; ++axis) {
         View& view = views_[axis];
+        if (!shown(axis)) continue;
         upload(view, volume, axis, cursor->voxel[axis], cursor->window);
         const ImVec2 a = view.imageMin, b = view.imageMax;
         const glm::ivec2 imageSize = sliceImageSize(dims, axis);
@@ -349,16 +365,16 @@ bool SliceViewer::drawContents(const Volume& volume, SliceCursor* cursor) {
         ImGui::TextDisabled("click: move crosshair");
         ImGui::TextDisabled("scroll, arrows: slice");
         ImGui::TextDisabled("right-drag: window/level");
+        ImGui::TextDisabled("double click: enlarge");
         ImGui::EndGroup();
         ImGui::PopTextWrapPos();
     }
 
     // Readout: the voxel under the mouse, or else the crosshair's, in data units.
     ImGui::SetCursorScreenPos(ImVec2(origin.x, origin.y + avail.y + ImGui::GetStyle().ItemSpacing.y));
-    const glm::ivec3 shown = hovered_ ? *hovered_ : cursor->voxel;
+    const glm::ivec3 read = hovered_ ? *hovered_ : cursor->voxel;
     ImGui::TextColored(hovered_ ? ImVec4(1, 1, 1, 1) : ImVec4(0.7f, 0.7f, 0.7f, 1), "%s (%d, %d, %d)  value %.6g",
-                       hovered_ ? "mouse" : "crosshair", shown.x, shown.y, shown.z,
-                       volume.value(shown.x, shown.y, shown.z));
+                       hovered_ ? "mouse" : "crosshair", read.x, read.y, read.z, volume.value(read.x, read.y, read.z));
     char windowText[64];
     std::snprintf(windowText, sizeof windowText, "  window %.5g .. %.5g", cursor->window.x, cursor->window.y);
     if (sameLineIfFits(ImGui::CalcTextSize(windowText).x)) ImGui::TextDisabled("%s", windowText);

@@ -130,6 +130,20 @@ void handleKeys(State& s) {
     if (pressed(GLFW_KEY_TAB)) s.showPanel = !s.showPanel;
     if (pressed(GLFW_KEY_P)) s.screenshotRequest = timestampedScreenshotName();
     if (pressed(GLFW_KEY_ESCAPE)) s.showHelp = false;
+    // Presentation mode: + and - (also on the keypad) scale the whole UI.
+    if (pressed(GLFW_KEY_EQUAL) || pressed(GLFW_KEY_KP_ADD)) s.requestedUiScale = s.uiScale + 0.25f;
+    if (pressed(GLFW_KEY_MINUS) || pressed(GLFW_KEY_KP_SUBTRACT)) s.requestedUiScale = s.uiScale - 0.25f;
+    // A deck: the arrows (and a presenter's clicker, which sends Page Up/Down).
+    // (Not while the mouse is over a panel: the slice views take the arrows there.)
+    if (s.deck && !io.WantCaptureMouse) {
+        const int last = int(s.deck->slides.size()) - 1;
+        int to = s.slide;
+        if (pressed(GLFW_KEY_RIGHT) || pressed(GLFW_KEY_DOWN) || pressed(GLFW_KEY_PAGE_DOWN)) to = std::min(last, to + 1);
+        if (pressed(GLFW_KEY_LEFT) || pressed(GLFW_KEY_UP) || pressed(GLFW_KEY_PAGE_UP)) to = std::max(0, to - 1);
+        if (pressed(GLFW_KEY_HOME)) to = 0;
+        if (pressed(GLFW_KEY_END)) to = last;
+        if (to != s.slide) showSlide(s, to);
+    }
 }
 
 void loadDropped(State& s) {
@@ -145,14 +159,12 @@ void loadDropped(State& s) {
     }
 }
 
-// High-DPI: ImGui's sizes and font follow the window's content scale.
-float applyContentScale(GLFWwindow* window) {
+// High-DPI: ImGui's sizes and font follow the window's content scale
+// (times the presentation scale, viewer_style.cpp).
+float windowContentScale(GLFWwindow* window) {
     float sx = 1.0f, sy = 1.0f;
     glfwGetWindowContentScale(window, &sx, &sy);
-    const float scale = std::max(1.0f, std::max(sx, sy));
-    ImGui::GetStyle().ScaleAllSizes(scale);
-    ImGui::GetIO().FontGlobalScale = scale;
-    return scale;
+    return std::max(1.0f, std::max(sx, sy));
 }
 
 // Saves the screenshot asked for this frame (P, the button or a script's
@@ -183,6 +195,7 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
     s.scene = initial;
     s.studentRoot = options.studentRoot.empty() ? projectRoot() + "/assignments" : options.studentRoot;
     s.hasReference = defaultImplementationRoot() == projectRoot() + "/reference";
+    if (!options.deck.empty()) s.deck = loadDeck(options.deck);
     auto volume = std::make_unique<Volume>(loadVolume(initial.dataset));
     GlfwWindow window(options.width, options.height, "voxlab");
     setImplementation(s.main, options.implementationRoot, *volume);
@@ -192,12 +205,14 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini litter in the working folder
-    ImGui::StyleColorsDark();
-    ImGui::GetStyle().WindowRounding = 6.0f;
-    ImGui::GetStyle().FrameRounding = 3.0f;
     ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
     ImGui_ImplOpenGL3_Init("#version 330 core");
-    s.contentScale = applyContentScale(window.handle());
+    s.windowScale = windowContentScale(window.handle());
+    applyUiScale(s, options.uiScale, s.windowScale);
+    if (s.deck) {  // a lecture starts with the image alone: Tab and T bring the panels back
+        s.showPanel = s.showTransferFunction = false;
+        showSlide(s, 0);
+    }
     g_state = &s;
     glfwSetDropCallback(window.handle(), onDrop);
     glfwSwapInterval(options.script.empty() ? 1 : 0);
@@ -214,7 +229,11 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
         if ((s.fbWidth != s.imageWidth || s.fbHeight != s.imageHeight) && !comparesWithExpected(s)) s.dirty = s.dirty || !s.interactive;
         if (script) {
             try {
-                if (script->step(s, window.handle()) == ScriptRunner::Done) break;
+                if (script->step(s, window.handle()) == ScriptRunner::Done) {
+                    if (!options.keepOpen) break;
+                    script.reset();  // the prepared state is the lecturer's now
+                    glfwSwapInterval(1);
+                }
             } catch (const Error& e) {
                 std::fprintf(stderr, "voxlab: %s\n", e.what());
                 exitCode = 1;
@@ -222,6 +241,11 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
             }
         }
         loadDropped(s);
+        if (s.requestedUiScale > 0.0f) {  // between frames: the font atlas is rebuilt
+            applyUiScale(s, s.requestedUiScale, s.windowScale);
+            s.requestedUiScale = 0.0f;
+            s.say("UI scale " + std::to_string(int(s.uiScale * 100 + 0.5f)) + "% (+ and - keys)", 2.0);
+        }
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();
@@ -229,6 +253,7 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
         handleKeys(s);
         drawPanels(s);
         drawOverlays(s);
+        s.relayout = false;
         renderFrame(s);
         presentFrame(s);
         ImGui::Render();

@@ -1,10 +1,11 @@
 // voxlab viewer: the ImGui panels (technique, parameters, transfer
-// functions, slices, ray profile) and the overlays (frame time, errors,
-// help, the split view's divider).
+// functions, slices, ray profile); the overlays are in viewer_overlays.cpp.
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -31,26 +32,40 @@ void sectionTitle(const char* title) {
 }
 
 // One widget per declared parameter: the panel is generated, never hand-made.
+// Each row is the parameter's name in words on the left and its widget
+// filling the rest, so that no label is cut off at any UI scale.
 bool parameterWidgets(const Renderer& renderer, const Volume& volume, ParameterValues* values) {
+    const std::vector<ParameterSpec> specs = renderer.parametersFor(volume.valueRange());
+    if (specs.empty() || !ImGui::BeginTable("parameters", 2, ImGuiTableFlags_SizingFixedFit)) return false;
+    ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthFixed);
+    ImGui::TableSetupColumn("value", ImGuiTableColumnFlags_WidthStretch);
     bool changed = false;
-    for (const ParameterSpec& p : renderer.parametersFor(volume.valueRange())) {
+    for (const ParameterSpec& p : specs) {
         ImGui::PushID(p.name.c_str());
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::AlignTextToFramePadding();
+        ImGui::TextUnformatted(parameterLabel(p.name).c_str());
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (%s)", p.description.c_str(), p.name.c_str());
+        ImGui::TableNextColumn();
+        ImGui::SetNextItemWidth(-FLT_MIN);
         double& value = values->try_emplace(p.name, p.defaultValue).first->second;
         if (p.type == ParameterType::Bool) {
             bool b = value != 0.0;
-            if (ImGui::Checkbox(p.name.c_str(), &b)) value = b, changed = true;
+            if (ImGui::Checkbox("##v", &b)) value = b, changed = true;
         } else if (p.type == ParameterType::Int) {
             int i = int(value);
-            if (ImGui::SliderInt(p.name.c_str(), &i, int(p.minValue), int(p.maxValue))) value = i, changed = true;
+            if (ImGui::SliderInt("##v", &i, int(p.minValue), int(p.maxValue))) value = i, changed = true;
         } else {
             float f = float(value);
             const double limit = p.dataUnits ? 1e30 : 512.0;
             const float lo = float(std::max(p.minValue, -limit)), hi = float(std::min(p.maxValue, limit));
-            if (ImGui::SliderFloat(p.name.c_str(), &f, lo, hi)) value = f, changed = true;
+            if (ImGui::SliderFloat("##v", &f, lo, hi)) value = f, changed = true;
         }
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.description.c_str());
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (%s)", p.description.c_str(), p.name.c_str());
         ImGui::PopID();
     }
+    ImGui::EndTable();
     return changed;
 }
 
@@ -210,9 +225,13 @@ TransferFunction2D startingTransferFunction2D(const State& s) {
 
 void transferFunctionPanel(State& s) {
     const Volume& volume = *s.volume;
-    ImGui::SetNextWindowPos(ImVec2(10 * s.contentScale, float(s.fbHeight) - 330 * s.contentScale),
-                            ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(460 * s.contentScale, 320 * s.contentScale), ImGuiCond_FirstUseEver);
+    const float scale = s.contentScale;
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    // Beside the control panel, at the bottom: the two never overlap.
+    const float x = (s.showPanel ? s.panelRight : 0.0f) + 10 * scale;
+    const ImGuiCond cond = s.relayout ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+    ImGui::SetNextWindowPos(ImVec2(x, display.y - 330 * scale), cond);
+    ImGui::SetNextWindowSize(ImVec2(std::min(460 * scale, std::max(200.0f, display.x - x - 10 * scale)), 320 * scale), cond);
     if (!ImGui::Begin("transfer function", &s.showTransferFunction)) return ImGui::End();
     const Renderer* renderer = rendererRegistry().find(s.scene.renderer);
     if (renderer && renderer->needsTransferFunction2D()) {  // asked of the renderer, not its name
@@ -246,146 +265,42 @@ void transferFunctionPanel(State& s) {
 
 }  // namespace
 
+std::string parameterLabel(const std::string& name) {
+    std::string label = name;
+    for (char& c : label)
+        if (c == '_') c = ' ';
+    return label;
+}
+
 void drawPanels(State& s) {
     const float scale = s.contentScale;
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    const ImGuiCond cond = s.relayout ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
     if (s.showPanel) {
-        ImGui::SetNextWindowPos(ImVec2(10 * scale, 10 * scale), ImGuiCond_FirstUseEver);
-        ImGui::SetNextWindowSize(ImVec2(360 * scale, 0), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowPos(ImVec2(10 * scale, 10 * scale), cond);
+        ImGui::SetNextWindowSize(ImVec2(360 * scale, 0), cond);
+        ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(FLT_MAX, std::max(100.0f, display.y - 20 * scale)));
         if (ImGui::Begin("voxlab", &s.showPanel)) techniquePanel(s);
+        s.panelRight = ImGui::GetWindowPos().x + ImGui::GetWindowSize().x;
         ImGui::End();
     }
-    if (s.showTransferFunction) transferFunctionPanel(s);
+    // The transfer-function editor, only for a renderer that has one.
+    const Renderer* renderer = rendererRegistry().find(s.scene.renderer);
+    const bool hasTransferFunction =
+        renderer && (renderer->usesTransferFunction() || renderer->needsTransferFunction2D());
+    if (s.showTransferFunction && hasTransferFunction) transferFunctionPanel(s);
     if (s.showSlices) {
         if (!s.sliceViewer) s.sliceViewer = std::make_unique<SliceViewer>();
-        ImGui::SetNextWindowPos(ImVec2(float(s.fbWidth) - 430 * scale, 10 * scale), ImGuiCond_FirstUseEver);
-        ImGui::SetNextWindowSize(ImVec2(420 * scale, 470 * scale), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowPos(ImVec2(display.x - 430 * scale, 10 * scale), cond);
+        ImGui::SetNextWindowSize(ImVec2(420 * scale, 470 * scale), cond);
         s.sliceViewer->draw("slices", *s.volume, &s.slices, &s.showSlices);
     }
     if (s.showProfile) {
-        ImGui::SetNextWindowPos(ImVec2(float(s.fbWidth) - 530 * scale, float(s.fbHeight) - 360 * scale),
-                                ImGuiCond_FirstUseEver);
-        ImGui::SetNextWindowSize(ImVec2(520 * scale, 320 * scale), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowPos(ImVec2(display.x - 530 * scale, display.y - 360 * scale), cond);
+        ImGui::SetNextWindowSize(ImVec2(520 * scale, 320 * scale), cond);
         if (ImGui::Begin("ray profile", &s.showProfile)) {
             if (s.profile) RayProfilePanel("##profile", *s.profile, s.scene.window.value_or(s.volume->valueRange()));
             else ImGui::TextDisabled("click a pixel of the image to follow its ray");
-        }
-        ImGui::End();
-    }
-}
-
-void drawOverlays(State& s) {
-    ImDrawList* fg = ImGui::GetForegroundDrawList();
-    ImDrawList* bg = ImGui::GetBackgroundDrawList();
-    const ImGuiIO& io = ImGui::GetIO();
-    const ImVec2 size = io.DisplaySize;
-    const float scale = s.contentScale;
-
-    // The slice planes in the 3D view.
-    if (s.showSlices && s.volume) {
-        const Camera camera = Camera::make(s.scene.camera, s.volume->extent(), s.fbWidth, s.fbHeight);
-        drawSlicePlanes(bg, camera, s.volume->extent(), s.volume->spacing(), s.slices.voxel, ImVec2(0, 0), size);
-    }
-    // The split view's divider and labels.
-    if (s.split == SplitMode::Split) {
-        const float x = s.divider * size.x;
-        fg->AddLine(ImVec2(x, 0), ImVec2(x, size.y), IM_COL32(255, 255, 255, 200), 2.0f * scale);
-        fg->AddCircleFilled(ImVec2(x, size.y * 0.5f), 7.0f * scale, IM_COL32(255, 255, 255, 230));
-        auto label = [&](const Side& side, bool right) {
-            std::string text = (side.renderer.empty() ? s.scene.renderer : side.renderer) + " · " +
-                               (side.implementation.empty() ? "reference" : "student");
-            if (comparesWithExpected(s))  // a student release: never "reference"
-                text = right ? (s.expected.available ? "expected: " + std::filesystem::path(s.expected.path).filename().string()
-                                                     : std::string("expected: none"))
-                             : "yours: " + s.expected.scene.renderer;
-            const ImVec2 t = ImGui::CalcTextSize(text.c_str());
-            const float lx = right ? x + 12 * scale : x - 12 * scale - t.x;
-            fg->AddRectFilled(ImVec2(lx - 6, size.y - 34 * scale), ImVec2(lx + t.x + 6, size.y - 34 * scale + t.y + 6),
-                              IM_COL32(0, 0, 0, 160), 4.0f);
-            fg->AddText(ImVec2(lx, size.y - 31 * scale), IM_COL32(255, 255, 255, 255), text.c_str());
-        };
-        label(s.main, false);
-        label(s.other, true);
-    } else if (s.split == SplitMode::Difference) {
-        fg->AddText(ImVec2(size.x * 0.5f - 120 * scale, size.y - 30 * scale), IM_COL32(255, 255, 255, 255),
-                    "difference |left - right| x4 (black: equal)");
-    }
-    if (comparesWithExpected(s) && !s.expected.available) {  // a student release away from a grading scene
-        const ImVec2 t = ImGui::CalcTextSize(s.expected.why.c_str());
-        fg->AddRectFilled(ImVec2(size.x * 0.5f - t.x * 0.5f - 8, size.y * 0.5f - 8),
-                          ImVec2(size.x * 0.5f + t.x * 0.5f + 8, size.y * 0.5f + t.y + 8), IM_COL32(0, 0, 0, 200), 4.0f);
-        fg->AddText(ImVec2(size.x * 0.5f - t.x * 0.5f, size.y * 0.5f), IM_COL32(255, 220, 120, 255),
-                    s.expected.why.c_str());
-    }
-
-    // Frame time, bottom right, always; in the samples view the samples too.
-    char samples[128] = "";
-    if (s.samplesShown && s.samplesFull > 0)
-        std::snprintf(samples, sizeof samples, "  samples %.3g of %.3g (%.0f%% skipped)", s.samplesTaken,
-                      s.samplesFull, 100.0 * std::max(0.0, 1.0 - s.samplesTaken / s.samplesFull));
-    else if (s.showSamples)
-        std::snprintf(samples, sizeof samples, "  samples: ray casters without a cutting plane only");
-    char line[320];
-    std::snprintf(line, sizeof line, "%s  render %.1f ms (%.1f frames/s)  %dx%d%s%s", s.scene.renderer.c_str(),
-                  s.renderMs, s.renderMs > 0 ? 1000.0 / s.renderMs : 0.0, s.imageWidth, s.imageHeight,
-                  s.interactive ? "  interactive: reduced size, double step" : "", samples);
-    const ImVec2 t = ImGui::CalcTextSize(line);
-    fg->AddRectFilled(ImVec2(size.x - t.x - 18 * scale, size.y - t.y - 14 * scale), ImVec2(size.x, size.y),
-                      IM_COL32(0, 0, 0, 150));
-    fg->AddText(ImVec2(size.x - t.x - 10 * scale, size.y - t.y - 8 * scale), IM_COL32(230, 230, 230, 255), line);
-
-    // Errors: a side's render error, or a shader that no longer compiles
-    // (the last good one keeps rendering).
-    std::string errors;
-    for (const Side* side : {&s.main, &s.other}) {
-        if (!side->engine) continue;
-        if (!side->error.empty()) errors += side->error + "\n";
-        if (!side->engine->shaderError().empty())
-            errors += side->engine->shaderError() + "\n(showing the last shader that compiled)\n";
-    }
-    if (!errors.empty()) {
-        ImGui::SetNextWindowPos(ImVec2(size.x * 0.5f, 10 * scale), ImGuiCond_Always, ImVec2(0.5f, 0.0f));
-        ImGui::SetNextWindowBgAlpha(0.85f);
-        ImGui::Begin("shader error", nullptr,
-                     ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
-        ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1.0f), "%s", errors.c_str());
-        ImGui::End();
-    }
-    if (!s.toast.empty() && Clock::now() < s.toastUntil) {
-        const ImVec2 tt = ImGui::CalcTextSize(s.toast.c_str());
-        const ImVec2 at(size.x * 0.5f - tt.x * 0.5f, size.y - 70 * scale);
-        fg->AddRectFilled(ImVec2(at.x - 10, at.y - 6), ImVec2(at.x + tt.x + 10, at.y + tt.y + 6), IM_COL32(20, 20, 30, 220), 6);
-        fg->AddText(at, IM_COL32(255, 255, 255, 255), s.toast.c_str());
-    }
-    if (s.showHelp) {
-        ImGui::SetNextWindowPos(ImVec2(size.x * 0.5f, size.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
-        ImGui::SetNextWindowBgAlpha(0.92f);
-        ImGui::Begin("keys", &s.showHelp, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
-        const char* keys[][2] = {{"left drag", "orbit"},
-                                 {"right or middle drag, shift+drag", "pan"},
-                                 {"wheel", "zoom"},
-                                 {"click", "ray profile of that pixel (with the panel open)"},
-                                 {"1 - 9", "switch technique"},
-                                 {"S", "split view: off, student | reference, difference"},
-                                 {"I", "left side: student / reference implementation"},
-                                 {"R", "reload shaders (also automatic when a file is saved)"},
-                                 {"X Y Z, shift for minus", "axis views"},
-                                 {"O", "orthographic / perspective"},
-                                 {"space", "reset the camera"},
-                                 {"T  L  F", "transfer function, slices, ray profile panels"},
-                                 {"Tab", "hide the control panel"},
-                                 {"P", "screenshot (PNG in the working folder)"},
-                                 {"ctrl+Z  ctrl+Y", "undo / redo transfer-function edits"},
-                                 {"H", "this help"},
-                                 {"drop a file", "open a dataset or a scene .json"}};
-        if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg)) {
-            for (const auto& k : keys) {
-                ImGui::TableNextRow();
-                ImGui::TableNextColumn();
-                ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.4f, 1.0f), "%s", k[0]);
-                ImGui::TableNextColumn();
-                ImGui::TextUnformatted(k[1]);
-            }
-            ImGui::EndTable();
         }
         ImGui::End();
     }

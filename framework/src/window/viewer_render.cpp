@@ -2,9 +2,12 @@
 // putting the images on the screen.
 //
 // While the mouse drags (and for a moment after the wheel turns) the
-// renderers run at half the window's resolution and twice the step, which
-// keeps the frame rate up on a software rasteriser; once input stops, one
-// full-quality frame replaces it.
+// renderers run at a fraction of the window's resolution and twice the step,
+// which keeps the frame rate up on a software rasteriser. Once input stops,
+// the image is refined progressively: each frame renders twice the last
+// resolution at the full step, until the window's resolution arrives. A
+// projector never shows the blurred image for long, and the UI still answers
+// between the steps (a new drag starts over at once).
 #include "voxlab_gl.h"
 
 #include <cmath>
@@ -66,30 +69,31 @@ void setImplementation(Side& side, const std::string& root, const Volume& volume
 }
 
 void loadDataset(State& s, const std::string& path) {
+    if (isSceneFile(path)) return setScene(s, Scene::load(path), path);
     Scene scene = s.scene;
-    std::string scenePath = s.scenePath;
-    if (isSceneFile(path)) {
-        scene = Scene::load(path);
-        scenePath = path;
-    } else {
-        scene.dataset = resolveDataPath(path);
-        scene.window.reset();  // the old dataset's window and colours mean nothing here
-        scene.transferFunction.reset();
-        scene.transferFunction2D.reset();
-        scene.roi.reset();
-        scene.cuttingPlane.reset();
+    scene.dataset = resolveDataPath(path);
+    scene.window.reset();  // the old dataset's window and colours mean nothing here
+    scene.transferFunction.reset();
+    scene.transferFunction2D.reset();
+    scene.roi.reset();
+    scene.cuttingPlane.reset();
+    setScene(s, scene, s.scenePath);
+}
+
+void setScene(State& s, const Scene& scene, const std::string& scenePath) {
+    if (scene.dataset != s.scene.dataset || !s.volume) {  // a deck's slides often share one volume
+        auto volume = std::make_unique<Volume>(loadVolume(scene.dataset));
+        s.main.engine->setVolume(*volume);
+        if (s.other.engine) s.other.engine->setVolume(*volume);
+        s.volume = std::move(volume);
+        s.histogram.reset();
+        s.histogram2D.reset();
+        s.slices = initialSliceCursor(*s.volume);
+        if (s.sliceViewer) s.sliceViewer->invalidate();
     }
-    auto volume = std::make_unique<Volume>(loadVolume(scene.dataset));
-    s.main.engine->setVolume(*volume);
-    if (s.other.engine) s.other.engine->setVolume(*volume);
-    s.volume = std::move(volume);
     s.scene = scene;
     s.scenePath = scenePath;
-    s.histogram.reset();
-    s.histogram2D.reset();
     s.profile.reset();
-    s.slices = initialSliceCursor(*s.volume);
-    if (s.sliceViewer) s.sliceViewer->invalidate();
     s.history = TransferFunctionHistory();
     s.dirty = true;
 }
@@ -126,13 +130,25 @@ void renderFrame(State& s) {
         s.dirty = false;
         return;
     }
-    const bool reduced = busy && s.dirty;
-    const int w = reduced ? std::max(1, int(s.fbWidth / s.reduction)) : s.fbWidth;
-    const int h = reduced ? std::max(1, int(s.fbHeight / s.reduction)) : s.fbHeight;
+    // While the mouse is busy: the reduced size and twice the step. Once it
+    // rests: twice the last resolution each frame, full step, up to full size.
+    const bool dragging = busy && s.dirty;
+    double reduction = 1.0;
+    if (dragging) {
+        reduction = s.reduction;
+        s.refineSteps = int(std::ceil(std::log2(reduction) - 1e-9));
+        s.refineStep = 0;
+    } else if (!s.dirty && s.interactive) {
+        reduction = std::max(1.0, s.shownReduction * 0.5);
+        s.refineStep = std::min(s.refineStep + 1, s.refineSteps);
+    }
+    const bool reduced = reduction > 1.0;
+    const int w = reduced ? std::max(1, int(s.fbWidth / reduction)) : s.fbWidth;
+    const int h = reduced ? std::max(1, int(s.fbHeight / reduction)) : s.fbHeight;
     const auto t0 = Clock::now();
-    const Scene mainScene = sideScene(s, s.main, w, h, reduced);
+    const Scene mainScene = sideScene(s, s.main, w, h, dragging);
     Scene otherScene;
-    if (s.split != SplitMode::Off) otherScene = sideScene(s, s.other, w, h, reduced);
+    if (s.split != SplitMode::Off) otherScene = sideScene(s, s.other, w, h, dragging);
     s.samplesShown =
         s.showSamples && samplesCountable(mainScene) && (s.split == SplitMode::Off || samplesCountable(otherScene));
     s.samplesTaken = renderSide(s.main, mainScene, s.samplesShown);
@@ -152,12 +168,15 @@ void renderFrame(State& s) {
     // Hold about 10 frames/s while the mouse is busy: shrink the reduced
     // image when it renders too slowly, grow it back when there is room
     // (from half to an eighth of the window's size on each side).
-    if (reduced) {
+    if (dragging) {
         if (s.renderMs > kInteractiveMs) s.reduction = std::min(8.0, s.reduction * std::sqrt(s.renderMs / kInteractiveMs));
         else if (s.renderMs < 0.5 * kInteractiveMs) s.reduction = std::max(2.0, s.reduction / 1.2);
     }
     s.interactive = reduced;
+    s.shownReduction = reduction;
+    if (!reduced) s.refineStep = s.refineSteps = 0;
     s.dirty = false;
+    if (!reduced) updateStubNotice(s);
 }
 
 void presentFrame(State& s) {
@@ -209,6 +228,8 @@ void pickRayProfile(State& s, glm::ivec2 pixel) {
     const bool right = s.split == SplitMode::Split && pixel.x >= s.divider * s.fbWidth;
     if (right && !s.other.renderer.empty()) scene.renderer = s.other.renderer, scene.parameters.clear();
     s.profile = computeRayProfile(*s.volume, scene, pixel.x, pixel.y);
+    s.profilePixel = pixel;
+    s.profileCamera = s.scene.camera;
     s.showProfile = true;
 }
 

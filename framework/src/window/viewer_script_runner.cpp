@@ -3,6 +3,7 @@
 #include "viewer_script_runner.h"
 
 #include <GLFW/glfw3.h>
+#include <imgui_impl_glfw.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -10,12 +11,35 @@
 #include "voxlab/camera_controller.h"
 #include "voxlab/error.h"
 #include "voxlab/transfer_function.h"
+#include "voxlab/transfer_function_2d.h"
 
 namespace voxlab::viewer {
 
 ScriptRunner::ScriptRunner(const std::string& path) : steps_(parseViewerScript(path)) {}
 
+namespace {
+
+int glfwKey(const std::string& name) {
+    static const std::pair<const char*, int> keys[] = {
+        {"left", GLFW_KEY_LEFT},       {"right", GLFW_KEY_RIGHT},        {"up", GLFW_KEY_UP},
+        {"down", GLFW_KEY_DOWN},       {"pageup", GLFW_KEY_PAGE_UP},     {"pagedown", GLFW_KEY_PAGE_DOWN},
+        {"home", GLFW_KEY_HOME},       {"end", GLFW_KEY_END},            {"plus", GLFW_KEY_EQUAL},
+        {"minus", GLFW_KEY_MINUS}};
+    for (const auto& [n, key] : keys)
+        if (name == n) return key;
+    return GLFW_KEY_UNKNOWN;  // parsing already refused other names
+}
+
+}  // namespace
+
 ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
+    // A key pressed by the last step goes up one frame later, through the
+    // same callback GLFW calls, so the viewer sees a person's key press.
+    if (heldKey_ != 0) {
+        ImGui_ImplGlfw_KeyCallback(window, heldKey_, 0, GLFW_RELEASE, 0);
+        heldKey_ = 0;
+        return Continue;
+    }
     // A frame is rendered between steps; `wait N` adds N more, and every
     // step waits for a full-quality image first.
     if (waitFrames_ > 0) {
@@ -23,7 +47,7 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
         return Continue;
     }
     if (dragFrames_ > 0 || settling_) return drag(s);
-    if (s.dirty) return Continue;
+    if (s.dirty || s.interactive) return Continue;  // (interactive: still refining)
     if (next_ >= steps_.size()) return Done;
     const ViewerStep& st = steps_[next_++];
     const std::string& c = st.command;
@@ -44,11 +68,26 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
         } else if (c == "tf") {
             if (word(st, 0) == "none") s.scene.transferFunction.reset();
             else s.scene.transferFunction = TransferFunction::load(dataPath(st, 0));
+        } else if (c == "tf2d") {
+            if (word(st, 0) == "none") s.scene.transferFunction2D.reset();
+            else s.scene.transferFunction2D = TransferFunction2D::load(dataPath(st, 0));
+        } else if (c == "key") {
+            heldKey_ = glfwKey(word(st, 0));
+            ImGui_ImplGlfw_KeyCallback(window, heldKey_, 0, GLFW_PRESS, 0);
+            return Continue;  // the viewer's key handling marks what changed
+        } else if (c == "ui-scale") {
+            applyUiScale(s, float(number(st, 0)), s.windowScale);
+        } else if (c == "slide") {
+            if (!s.deck) failStep(st, "no deck is open (voxlab view --deck FILE)");
+            if (integer(st, 0) > int(s.deck->slides.size()))
+                failStep(st, "the deck has " + std::to_string(s.deck->slides.size()) + " slides");
+            showSlide(s, integer(st, 0) - 1);
         } else if (c == "camera") {
             applyCameraStep(st, &s.scene.camera);
         } else if (c == "drag") {
             dragDx_ = number(st, 0), dragDy_ = number(st, 1), dragFrames_ = integer(st, 2);
             dragTimes_.clear();
+            refinements_ = 0;
             return Continue;
         } else if (c == "rotate") {
             rotateCamera(&s.scene.camera, number(st, 0), number(st, 1));
@@ -78,6 +117,11 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
             else if (p == "help") s.showHelp = on;
             else if (p == "controls") s.showPanel = on;
             else failStep(st, "unknown panel '" + p + "' (slices, tf, tf2d, profile, help, controls)");
+        } else if (c == "enlarge") {
+            const std::string& v = word(st, 0);
+            s.showSlices = true;
+            if (!s.sliceViewer) s.sliceViewer = std::make_unique<SliceViewer>();
+            s.sliceViewer->enlarged = v == "axial" ? kAxialAxis : v == "coronal" ? kCoronalAxis : v == "sagittal" ? kSagittalAxis : -1;
         } else if (c == "click") {
             pickRayProfile(s, glm::ivec2(integer(st, 0), integer(st, 1)));
         } else if (c == "size") {
@@ -115,15 +159,17 @@ ScriptRunner::Progress ScriptRunner::drag(State& s) {
         return Continue;
     }
     // Settling: the viewer renders full quality once the mouse has rested.
+    if (s.interactive) refinements_ = std::max(refinements_, s.refineStep);
     if (s.interactive || s.dirty || Clock::now() - s.lastInput < std::chrono::milliseconds(300)) return Continue;
     settling_ = false;
     std::vector<double> t = dragTimes_;
     std::sort(t.begin(), t.end());
     const double median = t.empty() ? 0.0 : t[t.size() / 2];
     std::printf("drag: %zu frames, the last at %s, step %g: median render %.1f ms (%.1f frames/s); "
-                "idle, full quality %dx%d, step %g: %.1f ms\n",
+                "idle, full quality %dx%d, step %g: %.1f ms, after %d refinement step%s\n",
                 t.size(), dragSize_.c_str(), std::min(kMaxStep, s.scene.step * 2.0), median,
-                median > 0 ? 1000.0 / median : 0.0, s.imageWidth, s.imageHeight, s.scene.step, s.renderMs);
+                median > 0 ? 1000.0 / median : 0.0, s.imageWidth, s.imageHeight, s.scene.step, s.renderMs,
+                refinements_ + 1, refinements_ == 0 ? "" : "s");
     std::fflush(stdout);
     return Continue;
 }

@@ -25,11 +25,13 @@ private:
     std::vector<ViewerStep> steps_;
     std::size_t next_ = 0;
     int waitFrames_ = 0;
+    int heldKey_ = 0;  // a GLFW key a `key` step pressed, released at the next step
     // A `drag` in progress: frames left, pixels per frame, render times seen.
     int dragFrames_ = 0;
     bool settling_ = false;
     double dragDx_ = 0, dragDy_ = 0;
     std::vector<double> dragTimes_;
+    int refinements_ = 0;  // the last refinement step seen while settling
     std::string dragSize_;
 };
 

@@ -1,8 +1,10 @@
 // voxlab viewer internals: what the window shows and how it got there.
 // The viewer is split by concern: viewer.cpp (the frame loop and input),
 // viewer_render.cpp (rendering both sides at interactive or full quality,
-// the split view), viewer_panels.cpp (the ImGui panels and overlays),
-// viewer_script_runner.cpp (scripted steps), shader_watcher.cpp (live reload).
+// the split view), viewer_panels.cpp (the ImGui panels), viewer_overlays.cpp
+// (what is drawn over the image), viewer_script_runner.cpp (scripted steps),
+// shader_watcher.cpp (live reload), viewer_style.cpp (the UI's size),
+// viewer_deck.cpp (demo decks), viewer_stubs.cpp (the checkerboard's line).
 #pragma once
 
 #include <chrono>
@@ -12,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "voxlab/deck.h"
 #include "voxlab/gradients.h"
 #include "voxlab/ray_profile.h"
 #include "voxlab/render_engine.h"
@@ -22,6 +25,7 @@
 #include "voxlab/volume.h"
 
 struct GLFWwindow;
+struct ImFont;
 
 namespace voxlab::viewer {
 
@@ -74,13 +78,22 @@ struct State {
 
     // Rendering.
     bool dirty = true;              // the scene changed: render again
-    bool interactive = false;       // the last images are reduced (mouse busy)
+    bool interactive = false;       // the last images are reduced (mouse busy, or still refining)
     double reduction = 2.0;         // while busy: the image is the window's size divided by this
+    // Progressive refinement: once the mouse rests, the reduced image is
+    // rendered again at twice its resolution, frame by frame, up to the
+    // window's; the UI answers between the steps.
+    double shownReduction = 1.0;    // the last images' reduction (1: full quality)
+    int refineStep = 0, refineSteps = 0;  // the step the last images were (0 while dragging)
     Clock::time_point lastInput{};
     Clock::time_point lastRetry{};  // a side whose shader never compiled is retried every second
     double renderMs = 0.0, frameMs = 0.0;
     int fbWidth = 0, fbHeight = 0;  // framebuffer pixels
-    float contentScale = 1.0f;      // high-DPI scale of the window
+    float contentScale = 1.0f;      // the UI's scale: the window's high-DPI scale times uiScale
+    float windowScale = 1.0f;       // the window's high-DPI scale
+    float uiScale = 1.0f;           // presentation mode: --ui-scale and the + and - keys
+    bool relayout = true;           // place the panels for the current scale (the next frame)
+    float requestedUiScale = 0.0f;  // a key asked for this scale (0: none), applied between frames
     int imageWidth = 0, imageHeight = 0;  // size of the images last rendered
     // The samples view: each pixel coloured by the samples its ray took
     // (RenderEngine::countSamples), on a scale where yellow is the most a
@@ -97,6 +110,7 @@ struct State {
     bool moved = false;
 
     // Panels.
+    float panelRight = 0.0f;        // the control panel's right edge (the transfer function goes beside it)
     bool showPanel = true, showTransferFunction = true, showSlices = false, showProfile = false, showHelp = false;
     int selectedPoint = -1, selectedWidget = -1;
     TransferFunctionHistory history;
@@ -106,9 +120,19 @@ struct State {
     SliceCursor slices;
     std::unique_ptr<SliceViewer> sliceViewer;
     std::optional<RayProfile> profile;
+    glm::ivec2 profilePixel{0};     // framebuffer pixel the profile was taken at
+    CameraSpec profileCamera;       // ... with this camera (the marker shows while it is the same)
     ShaderWatcher watcher;
     std::unique_ptr<ShaderProgram> presenter;  // shaders/viewer/split_view.frag
     unsigned presenterVao = 0;
+
+    // A demo deck (voxlab/deck.h): the slide shown, stepped by arrow keys.
+    std::optional<Deck> deck;
+    int slide = 0;
+
+    // The current side's functions that still hold the starter code's stub
+    // (the checkerboard), as one line; empty when none.
+    std::string stubNotice;
 
     // Messages: a load error or "saved screenshot" for a few seconds.
     std::string toast;
@@ -124,6 +148,7 @@ struct State {
 
 // viewer_render.cpp
 void loadDataset(State& s, const std::string& pathOrScene);  // throws voxlab::Error; the state is unchanged then
+void setScene(State& s, const Scene& scene, const std::string& scenePath);  // the same for a parsed scene
 void setImplementation(Side& side, const std::string& root, const Volume& volume);
 void renderFrame(State& s);          // renders what is dirty, at the right quality
 void presentFrame(State& s);         // draws the images into the window
@@ -135,8 +160,23 @@ std::string timestampedScreenshotName();
 bool comparesWithExpected(const State& s);  // split view without a reference
 void updateExpected(State& s);            // finds and loads the current scene's expected image
 
-// viewer_panels.cpp
+
+// viewer_stubs.cpp
+void updateStubNotice(State& s);    // rescans the main side's stage folders for stubs
+
+// viewer_panels.cpp, viewer_overlays.cpp
 void drawPanels(State& s);
 void drawOverlays(State& s);
+std::string parameterLabel(const std::string& name);  // "early_termination" -> "early termination"
+
+// viewer_style.cpp
+float clampUiScale(float scale);  // to quarter steps in [0.75, 4]
+// Rebuilds the font at the new size and scales the style; sets uiScale,
+// contentScale and relayout. Between frames only (not inside NewFrame..Render).
+void applyUiScale(State& s, float userScale, float windowScale);
+ImFont* captionFont();  // the large font of a deck's captions (the regular one without a TTF)
+
+// viewer_deck.cpp
+void showSlide(State& s, int index);  // clamps; loads the slide's dataset when it differs
 
 }  // namespace voxlab::viewer

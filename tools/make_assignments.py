@@ -50,6 +50,28 @@ class GeneratorError(Exception):
     pass
 
 
+def cpp_parameters(lines, k):
+    """The parameter names of the C++ signature that starts at line index k."""
+    text = " ".join(lines[k:k + 12])
+    start = text.find("(")
+    depth, end = 0, start
+    for end in range(start, len(text)):
+        depth += {"(": 1, ")": -1}.get(text[end], 0)
+        if depth == 0:
+            break
+    names, depth, part = [], 0, ""
+    for c in text[start + 1:end] + ",":
+        depth += {"<": 1, ">": -1, "(": 1, ")": -1}.get(c, 0)
+        if c == "," and depth == 0:
+            m = re.search(r"(\w+)\s*(\[[^\]]*\])?\s*$", part.split("=")[0])
+            if m and part.strip() not in ("", "void"):
+                names.append(m.group(1))
+            part = ""
+        else:
+            part += c
+    return names
+
+
 def stub(lines, begin, indent, path, is_cpp):
     """The stub for the solution block starting at line index `begin`."""
     # The function's signature: the nearest line above at column 0.
@@ -64,7 +86,12 @@ def stub(lines, begin, indent, path, is_cpp):
         m = CPP_SIGNATURE.match(line)
         if not m:
             raise GeneratorError(f"{path}:{k + 1}: cannot read the function name")
-        return [todo, f'{indent}throw NotImplemented("{m.group(1)}");']
+        out = [todo]
+        names = cpp_parameters(lines, k)
+        if names:  # the stub does not read them: no "unused parameter" warnings
+            out.append(f"{indent}" + ", ".join(f"(void){n}" for n in names) +
+                       ";  // delete this line once you use them")
+        return out + [f'{indent}throw NotImplemented("{m.group(1)}");']
     m = GLSL_SIGNATURE.match(line)
     if not m:
         raise GeneratorError(f"{path}:{k + 1}: cannot read the return type")

@@ -18,6 +18,7 @@ namespace voxlab {
 
 int chooseSliceAxis(glm::dvec3 viewDirection) {
     // TODO: implement this function (see the comment above it).
+    (void)viewDirection;  // delete this line once you use them
     throw NotImplemented("chooseSliceAxis");
 }
 

@@ -25,6 +25,7 @@ namespace voxlab {
 
 std::vector<glm::dvec3> planeBoxPolygon(glm::dvec3 normal, double offset, glm::dvec3 lo, glm::dvec3 hi) {
     // TODO: implement this function (see the comment above it).
+    (void)normal, (void)offset, (void)lo, (void)hi;  // delete this line once you use them
     throw NotImplemented("planeBoxPolygon");
 }
 

@@ -12,7 +12,8 @@ writes DIR/NAME/* for every target, from the repository's own files:
   dat            .dat descriptions of the same voxels in every Format;
   scene          datasets/scenes, tests/golden/scenes, reference/*/scenes;
   tf, tf2d       datasets/tf, datasets/tf2d;
-  viewer_script  scripts using every command.
+  viewer_script  scripts using every command;
+  deck           datasets/decks and a deck with every kind of slide.
 Every seed is small (under 4 KiB): the big volumes give only their headers
 and a few hundred bytes. Two-file seeds join the files with the separator of
 fuzz_common.h (kDataSeparator). Nothing is downloaded; the output is
@@ -209,6 +210,16 @@ def json_seeds(root, corpus):
                        '"alpha": 0.3, "color": [0, 0.6, 0]}]}')
 
 
+def deck_seeds(root, corpus):
+    copy_files(corpus, "deck", os.path.join(root, "datasets/decks/*.json"))
+    corpus.add("deck", """{"title": "every kind of slide", "slides": [
+  {"scene": "scenes/default.json", "caption": "a scene file"},
+  {"scene": "scenes/default.json", "renderer": "composite", "transfer_function": "tf/bonsai.json",
+   "camera": {"azimuth": 10}, "parameters": {"shading": true}, "caption": "overridden"},
+  {"scene": {"dataset": "phantom:sphere:16", "renderer": "iso"}, "caption": "inline"},
+  {"scene": {"dataset": "phantom:sphere:16"}, "sampling": null}]}""")
+
+
 def script_seeds(corpus):
     corpus.add("viewer_script", """# every command once
 load phantom:sphere:32
@@ -234,6 +245,14 @@ implementation "my work/stage"
 panel profile on
 click 10 20
 size 800 600
+tf2d tf2d/bonsai.json
+tf2d none
+key right
+key plus
+ui-scale 1.5
+slide 2
+enlarge axial
+enlarge off
 wait 0
 screenshot "out dir/shot.png"   # quoted
 quit
@@ -255,6 +274,7 @@ def main():
     dat_seeds(args.root, corpus)
     json_seeds(args.root, corpus)
     script_seeds(corpus)
+    deck_seeds(args.root, corpus)
     for target in sorted(os.listdir(args.out)):
         print("fuzz corpus %-14s %3d seeds" % (target, len(os.listdir(os.path.join(args.out, target)))))
 

@@ -9,7 +9,8 @@ set(VOXLAB_FUZZ_TARGETS
   scene           # scene JSON
   tf              # 1D transfer function
   tf2d            # 2D transfer function
-  viewer_script)  # viewer scripts
+  viewer_script   # viewer scripts
+  deck)           # demo decks
 
 # The parsers and what they call; nothing that needs OpenGL.
 set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
@@ -26,6 +27,7 @@ set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
   src/scene/transfer_function.cpp
   src/scene/transfer_function_2d.cpp
   src/scene/viewer_script.cpp
+  src/scene/deck.cpp
   src/render/camera.cpp
   src/io/atomic_file.cpp
   src/io/fd_io.cpp)

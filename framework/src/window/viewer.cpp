@@ -201,6 +201,7 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
     setImplementation(s.main, options.implementationRoot, *volume);
     s.volume = std::move(volume);
     s.slices = initialSliceCursor(*s.volume);
+    s.tfPath = presetOf(s.scene, *s.volume);
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();

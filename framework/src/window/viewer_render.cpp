@@ -14,6 +14,8 @@
 #include <ctime>
 #include <filesystem>
 
+#include <nlohmann/json.hpp>
+
 #include "viewer_state.h"
 #include "voxlab/error.h"
 #include "voxlab/ray_profile.h"
@@ -93,9 +95,23 @@ void setScene(State& s, const Scene& scene, const std::string& scenePath) {
     }
     s.scene = scene;
     s.scenePath = scenePath;
+    s.tfPath = presetOf(scene, *s.volume);  // the panel shows a preset's name
+    s.tfMessage.clear();
     s.profile.reset();
     s.history = TransferFunctionHistory();
     s.dirty = true;
+}
+
+std::string presetOf(const Scene& scene, const Volume& volume) {
+    if (!scene.transferFunction) return "";
+    const nlohmann::json mine = scene.transferFunction->toJson();
+    for (const std::string& preset : transferFunctionPresets(volume.name())) {
+        try {
+            if (TransferFunction::load(preset).toJson() == mine) return preset;
+        } catch (const Error&) {  // a broken preset is the editor's to report
+        }
+    }
+    return "";
 }
 
 void renderFrame(State& s) {

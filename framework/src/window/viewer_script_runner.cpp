@@ -66,8 +66,9 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
         } else if (c == "interpolation") {
             s.scene.interpolation = parseInterpolation(word(st, 0));
         } else if (c == "tf") {
+            s.tfPath = word(st, 0) == "none" ? "" : dataPath(st, 0);  // the panel shows its name
             if (word(st, 0) == "none") s.scene.transferFunction.reset();
-            else s.scene.transferFunction = TransferFunction::load(dataPath(st, 0));
+            else s.scene.transferFunction = TransferFunction::load(s.tfPath);
         } else if (c == "tf2d") {
             if (word(st, 0) == "none") s.scene.transferFunction2D.reset();
             else s.scene.transferFunction2D = TransferFunction2D::load(dataPath(st, 0));

@@ -149,6 +149,8 @@ struct State {
 // viewer_render.cpp
 void loadDataset(State& s, const std::string& pathOrScene);  // throws voxlab::Error; the state is unchanged then
 void setScene(State& s, const Scene& scene, const std::string& scenePath);  // the same for a parsed scene
+// The transfer-function preset (datasets/tf/) equal to the scene's, or "".
+std::string presetOf(const Scene& scene, const Volume& volume);
 void setImplementation(Side& side, const std::string& root, const Volume& volume);
 void renderFrame(State& s);          // renders what is dirty, at the right quality
 void presentFrame(State& s);         // draws the images into the window

@@ -8,7 +8,7 @@
 // seed, mapped to numbers by explicit arithmetic, so the inputs are the same
 // on every run and machine) and records inputs and outputs as JSON:
 //
-//   {"check": "phong_random", "stage": "shading", "not_implemented": false,
+//   {"check": "phong_random", "stage": "shading", "seed": 1592590337, "not_implemented": false,
 //    "fixture": {...},             // shared inputs (a volume), if any
 //    "cases": [{"function": "phong", "input": {...}, "output": ...}, ...]}
 //
@@ -47,6 +47,10 @@ struct CheckComparison {
     int cases = 0, failed = 0;
     std::string summary;                // one line, e.g. "37 of 200 cases differ; worst |Δ| 0.41"
     std::vector<std::string> examples;  // up to 3 failing cases: inputs, expected, got
+    // How to reproduce the inputs, from the expected results: {"seed": "0x5EED000A",
+    // "volume": {"dims": [6, 7, 5], "spacing": [...], "extent": [...], "values": "..."},
+    // "units": "..."}; each key only where known (empty for checks without a volume or seed).
+    nlohmann::json inputs = nlohmann::json::object();
 };
 
 // Compares a submission's outputs (`actual`) with the expected (reference)

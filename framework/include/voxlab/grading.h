@@ -12,6 +12,7 @@
 //     "requires": ["sampling"],              // prerequisites: stages whose functions it calls
 //     "scenes": [ {"name": "bonsai_oblique", "scene": "scenes/bonsai_oblique.json",
 //                  "weight": 1, "tolerance": {"max_flip": 0.03, "why": "..."},
+//                  "about": "what this scene shows",        // optional, shown in reports
 //                  "functions": ["mip_ray"]},          // what it exercises (default: all)
 //                 {"name": "...", "scene": "...", "hidden": true} ],  // graded, never shipped
 //     "checks": [ {"name": "phong_random", "weight": 1} ],    // function_checks.h
@@ -96,6 +97,7 @@ struct GradedScene {
     bool hidden = false;    // graded, but left out of the student release and of `voxlab check`
     Tolerance tolerance;
     std::vector<std::string> functions;  // the stage functions it exercises (default: all)
+    std::string about;                   // optional: what the scene shows and tests (in reports)
 };
 
 struct GradedCheck {

@@ -46,7 +46,8 @@ constexpr int kCases = 200;
 
 class CheckRandom {
 public:
-    explicit CheckRandom(std::uint32_t seed) : engine_(seed) {}
+    explicit CheckRandom(std::uint32_t seed) : engine_(seed), seed_(seed) {}
+    std::uint32_t seed() const { return seed_; }
     // [0, 1): mt19937's outputs are 32-bit integers, the same on every platform.
     double uniform() { return double(std::uint32_t(engine_())) / 4294967296.0; }
     double range(double lo, double hi) { return lo + (hi - lo) * uniform(); }
@@ -63,6 +64,7 @@ public:
 
 private:
     std::mt19937 engine_;
+    std::uint32_t seed_;
 };
 
 double f32(double x) { return double(float(x)); }
@@ -82,8 +84,9 @@ json numbers(std::initializer_list<float> values) {
     return a;
 }
 
-json checkJson(const std::string& name, const std::string& stage) {
-    return {{"check", name}, {"stage", stage}, {"not_implemented", false}, {"cases", json::array()}};
+// `seed` is recorded so that a failing case can be reproduced (the report shows it).
+json checkJson(const std::string& name, const std::string& stage, std::uint32_t seed) {
+    return {{"check", name}, {"stage", stage}, {"seed", seed}, {"not_implemented", false}, {"cases", json::array()}};
 }
 
 void addCase(json& check, const std::string& function, json input, json output) {
@@ -120,7 +123,7 @@ json runPhong(const std::string& root) {
     CheckRandom rng(0x5EED0001u);
     std::vector<glm::vec4> colours, normals, lights, views;
     std::vector<Coefficients> coefficients;
-    json check = checkJson("phong_random", "shading");
+    json check = checkJson("phong_random", "shading", rng.seed());
     std::vector<json> inputs;
     for (int i = 0; i < kCases; ++i) {
         Coefficients c;
@@ -267,7 +270,7 @@ json runTrilinear(const std::string& root) {
     GlslProbe probe(root, "probes/sampling_probe.frag");
     probe.setVolume(volume);
     const probe::ProbeResults results = probe.run(kCases, {points});
-    json check = checkJson("trilinear_random_points", "sampling");
+    json check = checkJson("trilinear_random_points", "sampling", rng.seed());
     check["fixture"] = {{"volume", volumeJson(volume)}};
     for (int f = 0; f < 2; ++f)
         for (int i = 0; i < kCases; ++i) {
@@ -316,7 +319,7 @@ json runGradient(const std::string& root) {
     GlslProbe probe(root, "probes/gradient_probe.frag", {{"u_interpolation", 2}});
     probe.setVolume(volume);
     const probe::ProbeResults results = probe.run(kCases, {points});
-    json check = checkJson("gradient_random_points", "gradient");
+    json check = checkJson("gradient_random_points", "gradient", rng.seed());
     check["fixture"] = {{"volume", volumeJson(volume)}, {"interpolation", "hardware"},
                         {"min_spacing", double(std::min({float(spacing.x), float(spacing.y), float(spacing.z)}))}};
     for (int f = 0; f < 2; ++f)
@@ -378,7 +381,7 @@ json runHalfSpace(const std::string& root) {
     }
     GlslProbe probe(root, "probes/half_space_probe.frag");
     const probe::ProbeResults results = probe.run(kCases, {planePoints, planeNormals, tested, origins, directions});
-    json check = checkJson("half_space_random", "cutting_plane");
+    json check = checkJson("half_space_random", "cutting_plane", rng.seed());
     auto flag = [](float v) { return std::isfinite(v) ? json(v != 0.0f) : json(nullptr); };
     for (int i = 0; i < kCases; ++i) {
         const std::size_t k = std::size_t(i);
@@ -498,7 +501,7 @@ json runTf2d(const std::string& root) {
             program.set(("u_tf2d_color" + index).c_str(), glm::vec4(glm::vec3(widgets[k].colour), widgets[k].alpha));
         }
     });
-    json check = checkJson("tf2d_classify_random", "tf2d");
+    json check = checkJson("tf2d_classify_random", "tf2d", rng.seed());
     for (int i = 0; i < kCases; ++i) {
         const std::size_t k = std::size_t(i);
         json widgets = json::array();
@@ -517,7 +520,7 @@ json runTf2d(const std::string& root) {
 
 json runSliceAxis(const std::string& root) {
     CheckRandom rng(0x5EED0006u);
-    json check = checkJson("slice_axis_random", "texslice2d");
+    json check = checkJson("slice_axis_random", "texslice2d", rng.seed());
 
     // chooseSliceAxis (C++). Exact ties are built from one number with its
     // sign flipped, so they are ties in any arithmetic.
@@ -594,7 +597,7 @@ json runSliceAxis(const std::string& root) {
 
 json runPlaneBox(const std::string&) {
     CheckRandom rng(0x5EED0007u);
-    json check = checkJson("plane_box_random", "texslice3d");
+    json check = checkJson("plane_box_random", "texslice3d", rng.seed());
     // Boxes on a grid of 1/64, normals on a grid of 1/256 and points on a
     // grid of 1/1024, scaled by powers of two: then every offset dot(n, p)
     // is exact in double, and a plane put through a corner or an edge
@@ -820,7 +823,7 @@ json runFirstHit(const std::string& root) {
             program.set("u_step", float(steps[std::size_t(i)]));
             program.set("u_threshold", float(thresholds[std::size_t(i)]));
         });
-    json check = checkJson("first_hit_random_rays", "firsthit");
+    json check = checkJson("first_hit_random_rays", "firsthit", rng.seed());
     check["fixture"] = {{"volume", volumeJson(volume)}, {"interpolation", "hardware"}};
     for (std::size_t k = 0; k < rays.size(); ++k) {
         json input = rayInput(rays[k], steps[k]);
@@ -862,7 +865,7 @@ json runProjection(const std::string& root, const std::string& stage, const std:
     const probe::ProbeResults results =
         marchRays(root, "probes/" + stage + "_probe.frag", volume, rays,
                   [&](const ShaderProgram& program, int i) { program.set("u_step", float(steps[std::size_t(i)])); });
-    json check = checkJson(stage + "_random_rays", stage);
+    json check = checkJson(stage + "_random_rays", stage, rng.seed());
     check["fixture"] = {{"volume", volumeJson(volume)}, {"interpolation", "hardware"}};
     for (std::size_t k = 0; k < rays.size(); ++k)
         addCase(check, function, rayInput(rays[k], steps[k]), {{"value", number(results.first[k].x)}});
@@ -954,7 +957,7 @@ json runIsoHit(const std::string& root) {
             program.set("u_isovalue", float(kIsovalue));
             program.set("u_refinement_steps", refinements[std::size_t(i)]);
         });
-    json check = checkJson("iso_hit_random_rays", "iso");
+    json check = checkJson("iso_hit_random_rays", "iso", rng.seed());
     check["fixture"] = {{"volume", volumeJson(volume)}, {"interpolation", "hardware"}};
     for (std::size_t k = 0; k < rays.size(); ++k) {
         json input = rayInput(rays[k], steps[k]);
@@ -1265,6 +1268,34 @@ std::string formatDelta(double delta) {
     return text;
 }
 
+// What a student needs to rebuild a check's inputs: the seed, the random
+// volume's dimensions, spacing and value mapping, and the units of it all.
+json reproduction(const json& expected) {
+    json out = json::object();
+    if (expected.contains("seed") && expected["seed"].is_number_unsigned()) {
+        char seed[16];
+        std::snprintf(seed, sizeof seed, "0x%08X", expected["seed"].get<unsigned>());
+        out["seed"] = seed;
+    }
+    const json volume = expected.value("fixture", json::object()).value("volume", json());
+    if (!volume.is_object() || !volume.contains("dims") || !volume.contains("extent")) return out;
+    const glm::dvec3 dims = vecOf(volume["dims"]), extent = vecOf(volume["extent"]);
+    const glm::dvec3 spacing = extent / dims;
+    const double offset = volume.value("value_offset", 0.0);
+    char values[96];
+    std::snprintf(values, sizeof values, "data value = stored value x %g %c %g", volume.value("value_scale", 1.0),
+                  offset < 0 ? '-' : '+', std::abs(offset));
+    const auto tidy = [](glm::dvec3 v) {  // floats as people write them: 1.3, not 1.3000000715
+        return json::array({std::round(v.x * 1e6) / 1e6, std::round(v.y * 1e6) / 1e6, std::round(v.z * 1e6) / 1e6});
+    };
+    out["volume"] = {
+        {"dims", volume["dims"]}, {"spacing", tidy(spacing)}, {"extent", tidy(extent)}, {"values", values}};
+    out["units"] = "world units for points, origins, t, steps and extents (the volume's box is [0, extent] on "
+                   "each axis, extent = dims x spacing, voxel (i, j, k) centred at (i+1/2, j+1/2, k+1/2) x "
+                   "spacing); data units for values, thresholds and isovalues";
+    return out;
+}
+
 }  // namespace
 
 const std::vector<FunctionCheckInfo>& functionChecks() {
@@ -1298,6 +1329,10 @@ CheckComparison compareFunctionCheck(const std::string& name, const json& expect
 
     CheckComparison result;
     result.cases = int(expectedCases.size());
+    try {
+        result.inputs = reproduction(expected);
+    } catch (const json::exception&) {  // a fixture of another shape: nothing to say
+    }
     double worst = 0.0, worstPassing = 0.0;
     std::map<std::string, std::pair<int, int>> perFunction;  // failed, cases
     for (std::size_t i = 0; i < expectedCases.size(); ++i) {

@@ -119,6 +119,7 @@ std::vector<GradedScene> readScenes(const json& j, const std::filesystem::path& 
         g.hidden = s.value("hidden", false);
         if (s.contains("tolerance")) g.tolerance = readTolerance(s.at("tolerance"), where + ".tolerance");
         g.functions = stringList(s, "functions", where);
+        g.about = text(s, "about", where, false);
         if (g.name.empty() || g.name.find_first_of("/\\. ") != std::string::npos)
             throw Error(where + ": name: use letters, digits and underscores");
         scenes.push_back(g);

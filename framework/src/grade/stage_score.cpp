@@ -63,12 +63,62 @@ std::string errorLine(const std::string& log) {
     return firstLine(log);
 }
 
+// A value of a scene file in a few words: "azimuth 160, elevation -160", "[128, 128]".
+std::string briefSetting(const nlohmann::ordered_json& value) {
+    if (value.is_string()) return value.get<std::string>();
+    if (value.is_number()) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", value.get<double>());
+        return text;
+    }
+    std::string out;
+    if (value.is_array()) {
+        for (const auto& item : value) out += (out.empty() ? "" : ", ") + briefSetting(item);
+        return "[" + out + "]";
+    }
+    if (value.is_object()) {
+        for (const auto& [key, item] : value.items()) {
+            const std::string text = briefSetting(item);
+            out += (out.empty() ? "" : ", ") + key + " " + (item.is_object() ? "(" + text + ")" : text);
+        }
+        return out;
+    }
+    return value.dump();
+}
+
+// The scene file in one line, in its own order, for the report: "dataset:
+// bonsai.nrrd; renderer: mip; camera: azimuth 160, ...". Long values are cut.
+std::string sceneSetup(const std::string& path) {
+    std::ifstream in(path);
+    const auto scene = nlohmann::ordered_json::parse(in, nullptr, false);
+    if (!scene.is_object()) return "";
+    std::string out;
+    for (const auto& [key, value] : scene.items()) {
+        std::string text = briefSetting(value);
+        if (text.size() > 80) text = text.substr(0, 77) + "...";
+        out += (out.empty() ? "" : "; ") + key + ": " + text;
+    }
+    return out;
+}
+
+// The scene file as the report names it: relative to the stages' root
+// ("mip/scenes/bonsai_oblique.json"), else its bare name.
+std::string sceneFile(const std::string& scenePath, const std::string& root) {
+    fs::path base = fs::path(root).lexically_normal();
+    if (base.filename().empty()) base = base.parent_path();  // "reference/"
+    const fs::path file = fs::path(scenePath).lexically_relative(base);
+    return file.empty() || *file.begin() == ".." ? fs::path(scenePath).filename().string() : file.string();
+}
+
 // One scene's entry: compared with the expected image when the worker sent
 // one; the images go into the report folder (written here, by the grader).
 json scoreScene(const GradedScene& scene, const StageRun& run, const RunOutcome& outcome, const fs::path& expected,
                 const fs::path& report, const std::string& ended, double* credit) {
     json entry = {{"name", scene.name}, {"max_score", 0.0}, {"score", 0.0}, {"tolerance", toJson(scene.tolerance)},
                   {"weight", scene.weight}, {"hidden", scene.hidden}};
+    if (!scene.about.empty()) entry["about"] = scene.about;
+    const std::string setup = sceneSetup(scene.scenePath);
+    if (!setup.empty()) entry["setup"] = setup;
     const fs::path want = expected / (scene.name + ".png");
     const std::string base = run.stage + "/" + scene.name;
     *credit = 0.0;
@@ -131,6 +181,7 @@ json scoreCheck(const GradedCheck& check, const StageRun& run, const RunOutcome&
             entry["status"] = c.failed == 0 && c.cases > 0 ? "passed" : "failed";
             entry["message"] = c.summary;
             entry["examples"] = c.examples;
+            if (!c.inputs.empty()) entry["inputs"] = c.inputs;
         } else if (error != outcome.results.errors.end()) {
             throw Error(firstLine(relativePaths(error->second.value("message", "error"), run)));
         } else {
@@ -183,6 +234,7 @@ std::pair<std::string, std::string> stageStatus(const RunOutcome& outcome, const
 json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManifest& manifest,
                 const GraderOptions& options, const std::string& reportStageDir) {
     json stage = {{"stage", manifest.stage}, {"title", manifest.title}, {"max_score", manifest.points}};
+    if (!manifest.about.empty()) stage["about"] = manifest.about;
     const fs::path expected = fs::path(options.expectedDir) / manifest.stage, report = reportStageDir;
     fs::create_directories(report);
     stage["not_implemented"] = outcome.stubs;
@@ -197,6 +249,7 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
         double c = 0.0;
         json entry = scoreScene(scene, run, outcome, expected, report, outcome.ended, &c);
         if (!ran) entry["message"] = outcome.problem;
+        entry["scene_file"] = sceneFile(scene.scenePath, options.referenceRoot);
         weightSum += scene.weight;
         credit += scene.weight * c;
         entry["credit"] = c;

@@ -38,10 +38,28 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
 namespace voxlab {
+
+// A stage of a submission that did not pass, for the class report and the
+// gradebook's problems column.
+struct StageProblem {
+    std::string stage, status, message;
+};
+
+// The submission's stages that did not pass (status other than passed and
+// example), worst first: compile_error, crashed, timeout, error (and any
+// status not named here), failed, not_implemented; in grading order within
+// each.
+std::vector<StageProblem> stageProblems(const nlohmann::json& results);
+
+// The same in one line for a CSV cell, worst first: "mip: compile_error
+// (mip/mip.glsl:20: error: ...); iso: failed; composite: not_implemented".
+// Messages are given for the first four kinds only.
+std::string problemsSummary(const nlohmann::json& results);
 
 // Writes reportDir/index.html for one graded submission from its results
 // (the schema above). Image paths in the results are relative to reportDir;
@@ -51,8 +69,11 @@ void writeHtmlReport(const nlohmann::json& results, const std::string& reportDir
 
 // Writes dir/index.html for a class: one row per submission (name, score,
 // per-stage scores, status), each linking to its report folder, sortable by
-// clicking a column's heading. Throws voxlab::Error when the file cannot be
-// written.
+// clicking a column's heading. What went wrong is visible text: each cell
+// names its stage's problem (compile error, crashed, ...) and the name's cell
+// lists the problems, worst first (stageProblems). Stages worth 0 points in
+// every submission (a worked example) get no column. Throws voxlab::Error
+// when the file cannot be written.
 void writeClassHtmlReport(const nlohmann::json& gradebook, const std::string& dir);
 
 }  // namespace voxlab

@@ -1,6 +1,7 @@
 // voxlab: a class's gradebook as one sortable HTML table (schema in
 // html_report.h): a row per submission, a column per stage, each row linking
 // to the submission's own report folder.
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <vector>
@@ -22,19 +23,80 @@ struct StageColumn {
 };
 
 // The stages in the order they first appear, so that a submission missing
-// a stage still lines up with the others.
+// a stage still lines up with the others. A stage worth 0 points in every
+// submission (a worked example) gets no column: there is nothing to show
+// but "0 / 0" (a problem with it still shows in the submission's cell).
 std::vector<StageColumn> stageColumns(const json& submissions) {
     std::vector<StageColumn> columns;
     std::map<std::string, std::size_t> index;
     for (const json& submission : submissions) {
         for (const json& stage : html::array(submission, "stages")) {
             const std::string name = html::text(stage, "stage");
-            if (index.count(name)) continue;
+            const auto maxScore = html::number(stage, "max_score");
+            if (index.count(name)) {
+                StageColumn& column = columns[index[name]];
+                if (maxScore && (!column.maxScore || *maxScore > *column.maxScore)) column.maxScore = maxScore;
+                continue;
+            }
             index[name] = columns.size();
-            columns.push_back({name, html::text(stage, "title"), html::number(stage, "max_score")});
+            columns.push_back({name, html::text(stage, "title"), maxScore});
         }
     }
+    columns.erase(std::remove_if(columns.begin(), columns.end(),
+                                 [](const StageColumn& c) { return c.maxScore && *c.maxScore == 0.0; }),
+                  columns.end());
     return columns;
+}
+
+// A name escaped, with a line-break opportunity after each underscore.
+std::string breakable(const std::string& name) {
+    std::string out;
+    for (char c : html::escape(name)) out += c == '_' ? std::string("_<wbr>") : std::string(1, c);
+    return out;
+}
+
+// How bad a stage's status is, for ordering problems: what stopped the
+// stage from running at all comes first, then wrong results, then work not
+// handed in.
+int severity(const std::string& status) {
+    if (status == "compile_error") return 0;
+    if (status == "crashed") return 1;
+    if (status == "timeout") return 2;
+    if (status == "failed") return 4;
+    if (status == "not_implemented") return 5;
+    return 3;  // error, and any status not named here
+}
+
+// The short text a stage's cell shows under its score: none for passed and
+// failed (the score and its colour say it).
+std::string cellNote(const std::string& status) {
+    if (status.empty() || status == "passed" || status == "failed" || status == "example") return "";
+    if (status == "not_implemented") return "not impl.";
+    return html::statusLabel(status);
+}
+
+// What went wrong with a submission, worst first, as visible text: each
+// error on its own line with its message, failed and unfinished stages
+// grouped.
+std::string problemsBlock(const json& submission) {
+    std::string out;
+    std::map<std::string, std::string> grouped;  // failed, not_implemented -> "mip, iso"
+    for (const StageProblem& p : stageProblems(submission)) {
+        if (severity(p.status) > 3) {
+            std::string& names = grouped[p.status];
+            names += (names.empty() ? "" : ", ") + p.stage;
+            continue;
+        }
+        out += "<div class=\"prob p-" + html::token(p.status) + "\"><b>" + html::escape(html::statusLabel(p.status)) +
+               "</b> in " + html::escape(p.stage);
+        if (!p.message.empty()) out += ": <span class=\"why\">" + html::escape(p.message) + "</span>";
+        out += "</div>";
+    }
+    for (const char* status : {"failed", "not_implemented"})
+        if (grouped.count(status))
+            out += "<div class=\"prob p-" + html::token(status) + "\"><b>" + html::statusLabel(status) + "</b>: " +
+                   html::escape(grouped[status]) + "</div>";
+    return out.empty() ? "" : "<div class=\"probs\">" + out + "</div>";
 }
 
 const json* findStage(const json& submission, const std::string& name) {
@@ -76,45 +138,64 @@ std::string row(const json& submission, std::vector<StageColumn>& columns, Total
     const auto score = total(submission, "score", "score"), maxScore = total(submission, "max_score", "max_score");
     totals.add(score, maxScore);
 
-    std::string out = "<tr><td data-sort=\"" + html::escape(name) + "\"><a href=\"" + html::urlPath(link) + "\">" +
-                      html::escape(name.empty() ? std::string("(unnamed)") : name) + "</a></td>";
+    // The name's cell also says what went wrong: the submission's own status
+    // (e.g. it did not build), then its stages' problems, worst first.
+    std::string out = "<tr><td class=\"who\" data-sort=\"" + html::escape(name) + "\"><a href=\"" +
+                      html::urlPath(link) + "\">" + breakable(name.empty() ? std::string("(unnamed)") : name) + "</a>";
+    const std::string status = html::text(submission, "status"), message = html::text(submission, "message");
+    if (!status.empty())
+        out += "<div class=\"prob\">" + html::badge(status) + (message.empty() ? "" : " " + html::escape(message)) +
+               "</div>";
+    out += problemsBlock(submission) + "</td>";
     out += "<td class=\"num total-cell\" data-sort=\"" + sortKey(score) + "\">" +
            html::escape(html::formatScore(score, maxScore)) + html::scoreBar(score, maxScore) + "</td>";
 
-    int passed = 0, graded = 0;
     for (StageColumn& column : columns) {
         const json* stage = findStage(submission, column.stage);
         if (!stage) {
             out += "<td class=\"num cell\" data-sort=\"-1\">\u2013</td>";
             continue;
         }
-        const std::string status = html::text(*stage, "status");
+        const std::string stageStatus = html::text(*stage, "status");
         const auto stageScore = html::number(*stage, "score");
         if (stageScore) column.sum += *stageScore, ++column.count;
-        ++graded;
-        if (status == "passed") ++passed;
-        std::string tip = html::statusLabel(status);
-        const std::string message = html::text(*stage, "message");
-        if (!message.empty()) tip += ": " + message;
-        out += "<td class=\"num cell cell-" + html::token(status.empty() ? "unknown" : status) + "\" data-sort=\"" +
-               sortKey(stageScore) + "\" title=\"" + html::escape(tip) + "\">" +
-               (stageScore ? html::formatNumber(*stageScore, 2) : std::string("\u2013")) + "</td>";
+        std::string tip = html::statusLabel(stageStatus);
+        const std::string stageMessage = html::text(*stage, "message");
+        if (!stageMessage.empty()) tip += ": " + stageMessage;
+        // Nothing handed in (not implemented, no points): a dash, as for a stage missing altogether.
+        const bool nothing = stageStatus == "not_implemented" && stageScore.value_or(0.0) == 0.0;
+        const std::string note = nothing ? "" : cellNote(stageStatus);
+        out += "<td class=\"num cell cell-" + html::token(stageStatus.empty() ? "unknown" : stageStatus) +
+               "\" data-sort=\"" + sortKey(stageScore) + "\" title=\"" + html::escape(tip) + "\">" +
+               (stageScore && !nothing ? html::formatNumber(*stageScore, 2) : std::string("\u2013")) +
+               (note.empty() ? "" : "<div class=\"note\">" + html::escape(note) + "</div>") + "</td>";
     }
-
-    // The submission's own status when it has one (e.g. it did not build), else how many stages passed.
-    const std::string status = html::text(submission, "status");
-    const std::string message = html::text(submission, "message");
-    if (!status.empty()) {
-        out += "<td data-sort=\"" + html::escape(status) + "\">" + html::badge(status);
-        if (!message.empty()) out += " <span class=\"sub\">" + html::escape(message) + "</span>";
-    } else {
-        out += "<td data-sort=\"" + std::to_string(passed) + "\">" + std::to_string(passed) + " of " +
-               std::to_string(graded) + " stages passed";
-    }
-    return out + "</td></tr>\n";
+    return out + "</tr>\n";
 }
 
 }  // namespace
+
+std::vector<StageProblem> stageProblems(const json& results) {
+    std::vector<StageProblem> out;
+    for (const json& stage : html::array(results, "stages")) {
+        const std::string status = html::text(stage, "status");
+        if (status == "passed" || status == "example") continue;
+        out.push_back({html::text(stage, "stage"), status.empty() ? "unknown" : status, html::text(stage, "message")});
+    }
+    std::stable_sort(out.begin(), out.end(), [](const StageProblem& a, const StageProblem& b) {
+        return severity(a.status) < severity(b.status);
+    });
+    return out;
+}
+
+std::string problemsSummary(const json& results) {
+    std::string out;
+    for (const StageProblem& p : stageProblems(results)) {
+        out += (out.empty() ? "" : "; ") + p.stage + ": " + p.status;
+        if (severity(p.status) <= 3 && !p.message.empty()) out += " (" + p.message + ")";
+    }
+    return out;
+}
 
 void writeClassHtmlReport(const json& gradebook, const std::string& dir) {
     const json& submissions = gradebook.is_array() ? gradebook : html::array(gradebook, "submissions");
@@ -140,26 +221,32 @@ void writeClassHtmlReport(const json& gradebook, const std::string& dir) {
             body += "<span class=\"of\"> / " + html::formatNumber(*totals.maxScore, 2) + "</span>";
         body += "</div><div class=\"percent\">mean score</div></div>";
     }
-    body += "</header>\n<main><section class=\"card wide-table\"><table class=\"gradebook sortable\"><thead><tr>"
-            "<th>Submission</th><th class=\"num\">Total</th>";
+    body += "</header>\n<main class=\"class\"><section class=\"card wide-table\"><table class=\"gradebook sortable\">"
+            "<thead><tr><th class=\"who\">Submission <span class=\"sub\">and what went wrong</span></th>"
+            "<th class=\"num\">Total</th>";
+    // Stage names run upwards so that fifteen stages fit a laptop's width.
     for (const StageColumn& column : columns) {
-        const std::string tip = column.title.empty() ? column.stage : column.title;
-        body += "<th class=\"num\" title=\"" + html::escape(tip) + "\">" + html::escape(column.stage);
+        const std::string tip = column.title.empty() ? column.stage : column.title + " (" + column.stage + ")";
+        body += "<th class=\"num stage-col\" title=\"" + html::escape(tip) + "\"><span class=\"up\">" +
+                html::escape(column.stage) + "</span>";
         if (column.maxScore) body += "<div class=\"sub\">/ " + html::formatNumber(*column.maxScore, 2) + "</div>";
         body += "</th>";
     }
-    body += "<th>Status</th></tr></thead><tbody>\n" + rows + "</tbody>";
+    body += "</tr></thead><tbody>\n" + rows + "</tbody>";
     if (totals.count > 0) {
         body += "<tfoot><tr><td>Mean</td><td class=\"num\">" + html::formatNumber(totals.sum / totals.count, 2) +
                 "</td>";
         for (const StageColumn& column : columns)
             body += "<td class=\"num\">" +
                     (column.count ? html::formatNumber(column.sum / column.count, 2) : "\u2013") + "</td>";
-        body += "<td></td></tr></tfoot>";
+        body += "</tr></tfoot>";
     }
-    body += "</table><p class=\"legend\">Click a column heading to sort by it; hover over a score for the stage's "
-            "status and message.</p></section></main>\n<footer>Written by voxlab grade. Each name links to that "
-            "submission's report.</footer>\n";
+    body += "</table><p class=\"legend\">Under each name, what went wrong, worst first: compile errors, crashes, "
+            "time-outs and errors with their message, then failed and unfinished (not implemented) stages. A cell "
+            "names its stage's problem under the score (\u2013: nothing handed in); hover over it for the stage's "
+            "message. Stages worth no "
+            "points (the worked example) have no column. Click a column heading to sort by it.</p></section></main>\n"
+            "<footer>Written by voxlab grade. Each name links to that submission's report.</footer>\n";
 
     writeFileAtomically((std::filesystem::path(dir) / "index.html").string(),
                         html::page(title, body, html::sortableTableScript));

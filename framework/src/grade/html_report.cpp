@@ -21,19 +21,15 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-struct ImageSlot {
-    const char* key;
-    const char* caption;
-    const char* hint;
+// What the two images of a comparison are called: a self-check compares
+// "yours" with "expected", a grade report the submission with the reference.
+struct Captions {
+    std::string expected, mine;
 };
 
-// The grader's images (grading.h: compareForGrading); hints become tooltips.
-const ImageSlot imageSlots[] = {
-    {"reference", "Reference", "rendered by the reference solution"},
-    {"submission", "Submission", "rendered by this submission"},
-    {"flip", "FLIP error", "perceived difference (Andersson et al. 2020): black none, yellow large"},
-    {"difference", "Difference", "per-pixel |difference|, amplified; red where a pixel is over the bound"},
-};
+Captions captionsFor(const std::string& mode) {
+    return mode == "check" ? Captions{"Expected", "Yours"} : Captions{"Reference", "Submission"};
+}
 
 // "2026-11-22T07:10:00Z" -> "2026-11-22 07:10 UTC"; anything else as given.
 std::string readableTime(const std::string& iso) {
@@ -69,55 +65,127 @@ std::string logBlock(const std::string& log) {
     return out + "</pre>\n";
 }
 
-// The scene's images at twice their size, or placeholders saying why not.
-// Sets messageShown when the scene's message fills the placeholder.
-std::string figures(const json& scene, const std::string& reportDir, bool& messageShown) {
-    const json& images = html::object(scene, "images");
-    struct Found { std::string path; int width = 0, height = 0; };
-    Found found[4];
-    int shownWidth = 0, shownHeight = 0, present = 0;
-    for (int i = 0; i < 4; ++i) {
-        const std::string path = html::text(images, imageSlots[i].key);
-        int w = 0, h = 0, channels = 0;
-        if (path.empty() || !fs::is_regular_file(fs::path(reportDir) / path)) continue;
-        if (stbi_info((fs::path(reportDir) / path).string().c_str(), &w, &h, &channels)) {
-            shownWidth = 2 * w, shownHeight = 2 * h;  // pixelated, so each pixel is visible
-        }
-        found[i] = {path, w, h};
-        ++present;
+// One of a scene's images on disk, with its size in pixels (0 when unknown).
+struct SceneImage {
+    std::string path;
+    int width = 0, height = 0;
+    bool present() const { return !path.empty(); }
+};
+
+SceneImage findImage(const json& images, const char* key, const std::string& reportDir) {
+    const std::string path = html::text(images, key);
+    if (path.empty() || !fs::is_regular_file(fs::path(reportDir) / path)) return {};
+    SceneImage image{path};
+    int channels = 0;
+    if (!stbi_info((fs::path(reportDir) / path).string().c_str(), &image.width, &image.height, &channels))
+        image.width = image.height = 0;
+    return image;
+}
+
+// Renders are small (128 px): the comparison shows them magnified by the
+// largest whole factor that keeps them within 512 px, pixels kept sharp.
+int compareScale(const SceneImage& image) {
+    const int side = std::max(image.width, image.height);
+    return side > 0 ? std::max(1, 512 / side) : 1;
+}
+
+std::string sizeAttributes(const SceneImage& image, int scale) {
+    if (image.width <= 0) return "";
+    return " width=\"" + std::to_string(scale * image.width) + "\" height=\"" + std::to_string(scale * image.height) +
+           "\"";
+}
+
+// The expected image under the student's, split by a slider (the script in
+// html_report_style.cpp moves the split), with buttons that show either one
+// alone and one that enlarges both. The buttons are radio buttons and a
+// check box styled by the sheet, so they work without the script.
+std::string compareWidget(const SceneImage& expected, const SceneImage& mine, int scale, const Captions& captions,
+                          const std::string& id) {
+    const SceneImage& base = expected.present() ? expected : mine;
+    const bool both = expected.present() && mine.present();
+    std::string out = "<div class=\"compare\">", labels;
+    if (both) {
+        for (const std::string mode : {"split", "expected", "mine"})
+            out += "<input type=\"radio\" class=\"v-" + mode + "\" name=\"" + id + "\" id=\"" + id + "-" + mode +
+                   "\"" + (mode == "split" ? " checked" : "") + ">";
+        labels = "<label class=\"m-expected\" for=\"" + id + "-expected\">" + captions.expected +
+                 "</label><label class=\"m-split\" for=\"" + id + "-split\">Slider</label><label class=\"m-mine\" " +
+                 "for=\"" + id + "-mine\">" + captions.mine + "</label>";
     }
+    out += "<input type=\"checkbox\" class=\"v-zoom\" id=\"" + id + "-zoom\">";
+    out += "<div class=\"modes\">" + labels + "<label class=\"m-zoom\" for=\"" + id + "-zoom\">Enlarge</label></div>";
+    const int width = base.width > 0 ? scale * base.width : 512;
+    out += "<div class=\"stack\" style=\"--w:" + std::to_string(width) + "px\">";
+    out += "<img class=\"under\" src=\"" + html::urlPath(base.path) + "\"" + sizeAttributes(base, scale) + " alt=\"" +
+           html::escape(expected.present() ? captions.expected : captions.mine) + " image\">";
+    if (both) {
+        out += "<img class=\"over\" src=\"" + html::urlPath(mine.path) + "\"" + sizeAttributes(mine, scale) +
+               " alt=\"" + captions.mine + " image\"><span class=\"divider\"></span>"
+               "<input type=\"range\" class=\"slider\" min=\"0\" max=\"100\" value=\"50\" aria-label=\"Split between " +
+               captions.expected + " (left) and " + captions.mine + " (right)\">";
+        out += "<span class=\"tag left\">" + captions.expected + "</span><span class=\"tag right\">" + captions.mine +
+               "</span>";
+    }
+    out += "</div><div class=\"open\">Open at full size:";
+    if (expected.present()) out += " <a href=\"" + html::urlPath(expected.path) + "\">" + captions.expected + "</a>";
+    if (both) out += " \u00b7";
+    if (mine.present()) out += " <a href=\"" + html::urlPath(mine.path) + "\">" + captions.mine + "</a>";
+    return out + "</div></div>\n";
+}
+
+// A heat map beside the comparison, or a placeholder of its size saying why not.
+std::string mapFigure(const SceneImage& image, int scale, const SceneImage& like, const std::string& caption,
+                      const std::string& hint, const std::string& why) {
+    std::string out = "<figure title=\"" + html::escape(hint) + "\">";
+    if (image.present()) {
+        out += "<a href=\"" + html::urlPath(image.path) + "\"><img src=\"" + html::urlPath(image.path) + "\"" +
+               sizeAttributes(image, scale) + " alt=\"" + caption + " image\"></a>";
+    } else {
+        const std::string size = like.width > 0 ? " style=\"width:" + std::to_string(scale * like.width) +
+                                                      "px;height:" + std::to_string(scale * like.height) + "px\""
+                                                : "";
+        out += "<div class=\"placeholder\"" + size + ">" + html::escape(why) + "</div>";
+    }
+    return out + "<figcaption>" + caption + "</figcaption></figure>";
+}
+
+// The scene's images: the comparison of the expected image with the
+// submission's, large, and the FLIP and difference maps at half its
+// magnification; placeholders say what is missing and why. Sets
+// messageShown when the scene's message fills a placeholder.
+std::string figures(const json& scene, const std::string& reportDir, const Captions& captions, const std::string& id,
+                    bool& messageShown) {
+    const json& images = html::object(scene, "images");
+    const SceneImage expected = findImage(images, "reference", reportDir);
+    const SceneImage mine = findImage(images, "submission", reportDir);
+    const SceneImage flip = findImage(images, "flip", reportDir);
+    const SceneImage difference = findImage(images, "difference", reportDir);
     const std::string message = html::text(scene, "message");
-    if (present == 0) {
+    if (!expected.present() && !mine.present() && !flip.present() && !difference.present()) {
         messageShown = true;
         const std::string why = message.empty() ? "No images were written for this scene." : message;
         return "<div class=\"placeholder wide\">" + html::escape(why) + "</div>\n";
     }
-    // Placeholders take the size of the images beside them.
-    const std::string sizeStyle = shownWidth > 0
-        ? " style=\"width:" + std::to_string(shownWidth) + "px;height:" + std::to_string(shownHeight) + "px\"" : "";
-    // Without the submission's image, its slot says why (the scene's message) and the comparisons have none.
-    const bool noSubmission = found[1].path.empty();
-    messageShown = noSubmission && !message.empty();
+    const SceneImage& base = expected.present() ? expected : mine;
+    // A passed scene has nothing to find: it is shown at half the size (Enlarge still doubles it).
+    const int full = compareScale(base), scale = html::text(scene, "status") == "passed" ? std::max(1, full / 2) : full;
+    const int mapScale = std::max(1, scale / 2);
     std::string out = "<div class=\"figures\">\n";
-    for (int i = 0; i < 4; ++i) {
-        out += "<figure title=\"" + html::escape(imageSlots[i].hint) + "\">";
-        if (found[i].path.empty()) {
-            std::string why = "not written", kind = "placeholder";
-            if (i == 1 && !message.empty()) why = message, kind = "placeholder why";
-            else if (i > 1 && noSubmission) why = "no submission image to compare";
-            out += "<div class=\"" + kind + "\"" + sizeStyle + ">" + html::escape(why) + "</div>";
-        } else {
-            const std::string src = html::urlPath(found[i].path);
-            std::string size;
-            if (found[i].width > 0) {
-                size = " width=\"" + std::to_string(2 * found[i].width) + "\" height=\"" +
-                       std::to_string(2 * found[i].height) + "\"";
-            }
-            out += "<a href=\"" + src + "\"><img src=\"" + src + "\"" + size + " alt=\"" +
-                   html::escape(std::string(imageSlots[i].caption) + " image") + "\"></a>";
-        }
-        out += "<figcaption>" + std::string(imageSlots[i].caption) + "</figcaption></figure>\n";
+    if (base.present()) out += compareWidget(expected, mine, scale, captions, id);
+    if (!mine.present()) {  // the student's slot says why there is no image (the scene's message)
+        messageShown = !message.empty();
+        out += "<figure>" + std::string("<div class=\"placeholder why\" style=\"width:") +
+               std::to_string(base.width > 0 ? mapScale * base.width : 256) + "px\">" +
+               html::escape(message.empty() ? "not written" : message) + "</div><figcaption>" + captions.mine +
+               "</figcaption></figure>\n";
     }
+    const std::string noComparison = mine.present() ? "not written" : "no image to compare";
+    out += "<div class=\"maps\">" +
+           mapFigure(flip, mapScale, base, "FLIP error",
+                     "perceived difference (Andersson et al. 2020): black none, yellow large", noComparison) +
+           mapFigure(difference, mapScale, base, "Difference",
+                     "per-pixel |difference|, amplified; red where a pixel is over the bound", noComparison) +
+           "</div>\n";
     return out + "</div>\n";
 }
 
@@ -189,16 +257,27 @@ std::string metricTiles(const json& scene) {
     return "<div class=\"metrics\">\n" + tiles + "</div>\n";
 }
 
-std::string sceneBlock(const json& scene, const std::string& reportDir, IdMaker& ids, const std::string& stageId) {
+std::string sceneBlock(const json& scene, const std::string& reportDir, const Captions& captions, IdMaker& ids,
+                       const std::string& stageId) {
     const std::string name = html::text(scene, "name");
     const std::string message = html::text(scene, "message");
-    std::string out = "<div class=\"scene\" id=\"" + ids.make(stageId + "-", name) + "\">\n<div class=\"scene-head\">"
+    const std::string id = ids.make(stageId + "-", name);
+    std::string out = "<div class=\"scene\" id=\"" + id + "\">\n<div class=\"scene-head\">"
                       "<span class=\"scene-name\">" + html::escape(name) + "</span>" +
-                      html::badge(html::text(scene, "status")) + "<span class=\"score\">" +
-                      html::escape(html::formatScore(html::number(scene, "score"), html::number(scene, "max_score"))) +
-                      "</span></div>\n";
+                      html::badge(html::text(scene, "status"));
+    const auto maxScore = html::number(scene, "max_score");
+    if (!maxScore || *maxScore > 0.0)  // a worked example's scenes carry no points: no "0 / 0"
+        out += "<span class=\"score\">" +
+               html::escape(html::formatScore(html::number(scene, "score"), maxScore)) + "</span>";
+    out += "</div>\n";
+    const std::string about = html::text(scene, "about"), setup = html::text(scene, "setup");
+    const std::string file = html::text(scene, "scene_file");
+    if (!about.empty()) out += "<p class=\"about\">" + html::escape(about) + "</p>\n";
+    if (!setup.empty() || !file.empty())
+        out += "<p class=\"setup\">" + (file.empty() ? "" : "<code>" + html::escape(file) + "</code> ") +
+               html::escape(setup) + "</p>\n";
     bool messageShown = false;
-    const std::string images = figures(scene, reportDir, messageShown);
+    const std::string images = figures(scene, reportDir, captions, "cmp-" + id, messageShown);
     if (!message.empty() && !messageShown) out += "<p class=\"message\">" + html::escape(message) + "</p>\n";
     return out + "<div class=\"scene-body\">\n" + images + metricTiles(scene) + "</div></div>\n";
 }
@@ -214,6 +293,8 @@ std::string checksTable(const json& checks) {
         out += "</td><td>" + html::badge(status) + "</td><td class=\"num\">" +
                html::escape(html::formatScore(html::number(check, "score"), html::number(check, "max_score"))) +
                "</td><td>" + html::escape(html::text(check, "message"));
+        const std::string inputs = html::checkInputsText(html::object(check, "inputs"));
+        if (!inputs.empty()) out += "<div class=\"inputs\">Inputs: " + html::escape(inputs) + "</div>";
         const json& examples = html::array(check, "examples");
         if (!examples.empty()) {
             out += std::string("<details") + (status == "passed" ? "" : " open") + "><summary>" +
@@ -229,7 +310,8 @@ std::string checksTable(const json& checks) {
     return out + "</tbody></table>\n";
 }
 
-std::string stageSection(const json& stage, const std::string& id, const std::string& reportDir, IdMaker& ids) {
+std::string stageSection(const json& stage, const std::string& id, const std::string& reportDir, const Captions& captions,
+                         IdMaker& ids) {
     const std::string name = html::text(stage, "stage");
     std::string title = html::text(stage, "title");
     if (title.empty()) title = name;
@@ -240,7 +322,8 @@ std::string stageSection(const json& stage, const std::string& id, const std::st
                       html::escape(html::formatScore(score, maxScore)) + "</span></div>\n";
     const std::string message = html::text(stage, "message"), about = html::text(stage, "about");
     if (!message.empty()) out += "<p class=\"message\">" + html::escape(message) + "</p>\n";
-    if (!about.empty()) out += "<p class=\"about\">" + html::escape(about) + "</p>\n";
+    if (!about.empty())
+        out += "<p class=\"about\"><span class=\"label\">What this stage tests:</span> " + html::escape(about) + "</p>\n";
     for (const json& hint : html::array(stage, "hints"))
         if (hint.is_string()) out += "<p class=\"hint\">Hint: " + html::escape(hint.get<std::string>()) + "</p>\n";
     if (auto seconds = html::number(stage, "elapsed_s"))
@@ -253,10 +336,12 @@ std::string stageSection(const json& stage, const std::string& id, const std::st
     const json& scenes = html::array(stage, "scenes");
     if (!scenes.empty()) {
         out += "<h3>Scenes</h3>\n";
-        for (const json& scene : scenes) out += sceneBlock(scene, reportDir, ids, id);
-        out += "<p class=\"legend\">FLIP: black means no perceived difference, bright yellow a large one. "
+        for (const json& scene : scenes) out += sceneBlock(scene, reportDir, captions, ids, id);
+        out += "<p class=\"legend\">Drag across an image to move the split between " + captions.expected +
+               " (left) and " + captions.mine + " (right), or show either alone; Enlarge doubles the size. "
+               "FLIP: black means no perceived difference, bright yellow a large one. "
                "Difference: per-pixel |difference|, amplified; red marks pixels over the bound. "
-               "Click an image to open it at full size.</p>\n";
+               "Click a map to open it at full size.</p>\n";
     }
     const json& checks = html::array(stage, "checks");
     if (!checks.empty()) out += "<h3>Function checks</h3>\n" + checksTable(checks);
@@ -338,12 +423,15 @@ void writeHtmlReport(const json& results, const std::string& reportDir) {
 
     std::string body = header(results, stages) + "<main>\n";
     if (!stages.empty()) body += summaryTable(stages, stageIds);
-    for (std::size_t i = 0; i < stages.size(); ++i) body += stageSection(stages[i], stageIds[i], reportDir, ids);
+    const Captions captions = captionsFor(html::text(results, "mode"));
+    for (std::size_t i = 0; i < stages.size(); ++i)
+        body += stageSection(stages[i], stageIds[i], reportDir, captions, ids);
     body += "</main>\n<footer>Written by voxlab grade. This folder is self-contained and works offline.</footer>\n";
 
     const std::string name = html::text(results, "name");
     writeFileAtomically((fs::path(reportDir) / "index.html").string(),
-                        html::page((name.empty() ? std::string("Submission") : name) + " \u2013 voxlab report", body, ""));
+                        html::page((name.empty() ? std::string("Submission") : name) + " \u2013 voxlab report", body,
+                                   html::compareSliderScript));
 }
 
 }  // namespace voxlab

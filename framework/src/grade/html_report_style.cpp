@@ -41,6 +41,7 @@ h3 { margin: 22px 0 10px; font-size: 15px; text-transform: uppercase; letter-spa
 .sub { color: var(--muted); font-size: 12.5px; }
 .message { margin: 8px 0; }
 .about { color: var(--muted); margin: 4px 0; }
+.about .label { color: var(--ink); font-weight: 600; }
 .hint { margin: 6px 0; padding: 6px 10px; border-left: 4px solid #d9a400; background: rgba(217, 164, 0, 0.10); }
 .legend { color: var(--muted); font-size: 12.5px; margin: 10px 0 0; }
 
@@ -82,8 +83,44 @@ pre.log .err { color: #ff7b72; } pre.log .warn { color: #e3b341; }
 .scene-head { display: flex; align-items: center; gap: 12px; }
 .scene-name { font-weight: 600; font-size: 15px; }
 .scene-head .score { margin-left: auto; }
-.scene-body { display: flex; flex-direction: column; gap: 12px; margin-top: 8px; }
-.figures { display: flex; flex-wrap: wrap; gap: 10px; }
+.setup { color: var(--muted); font-size: 12.5px; margin: 2px 0 6px; overflow-wrap: anywhere; }
+.setup code { color: var(--ink); }
+.scene-body { display: flex; flex-wrap: wrap; gap: 16px; margin-top: 8px; align-items: flex-start; }
+.figures { display: flex; flex-wrap: wrap; gap: 12px; align-items: flex-start; min-width: 0; max-width: 100%; }
+.maps { display: flex; flex-direction: column; gap: 6px; margin-top: 31px; }
+.scene-body .metrics { flex: 1 1 300px; display: grid; grid-template-columns: repeat(auto-fill, minmax(150px, 1fr));
+  align-content: start; margin-top: 31px; }
+.scene-body .metrics .m-label { white-space: normal; }
+
+/* A comparison: the expected image under the student's, split by a slider. */
+.compare { min-width: 0; max-width: 100%; }
+.compare > input { position: absolute; opacity: 0; width: 1px; height: 1px; margin: 0; pointer-events: none; }
+.modes { display: flex; flex-wrap: wrap; gap: 4px; margin-bottom: 6px; }
+.modes label { cursor: pointer; user-select: none; font-size: 12.5px; line-height: 1.5; padding: 2px 11px;
+  border: 1px solid var(--line); border-radius: 999px; background: #fafbfc; color: var(--muted); }
+.modes label:hover { border-color: var(--muted); }
+.modes .m-zoom { margin-left: auto; }
+.v-split:checked ~ .modes .m-split, .v-expected:checked ~ .modes .m-expected, .v-mine:checked ~ .modes .m-mine,
+.v-zoom:checked ~ .modes .m-zoom { background: var(--head); border-color: var(--head); color: #fff; }
+.compare > input:focus-visible ~ .modes { outline: 2px solid var(--info); outline-offset: 2px; border-radius: 6px; }
+.stack { --split: 50%; position: relative; width: var(--w); max-width: 100%; line-height: 0; background: #000;
+  border: 1px solid var(--line); }
+.v-zoom:checked ~ .stack { width: calc(2 * var(--w)); }
+.stack img { display: block; width: 100%; height: auto; image-rendering: pixelated; image-rendering: crisp-edges; }
+.stack .over { position: absolute; top: 0; left: 0; clip-path: inset(0 0 0 var(--split)); }
+.stack .divider { position: absolute; top: 0; bottom: 0; left: var(--split); width: 2px; margin-left: -1px;
+  background: #fff; box-shadow: 0 0 0 1px rgba(0, 0, 0, .45); pointer-events: none; }
+.stack .slider { display: none; position: absolute; top: 0; left: 0; width: 100%; height: 100%; margin: 0;
+  opacity: 0; cursor: ew-resize; }
+.scripted .stack .slider { display: block; }
+.stack .tag { position: absolute; top: 6px; padding: 0 7px; border-radius: 4px; background: rgba(0, 0, 0, .62);
+  color: #fff; font-size: 11.5px; font-weight: 600; line-height: 1.7; pointer-events: none; }
+.stack .tag.left { left: 6px; } .stack .tag.right { right: 6px; }
+.v-expected:checked ~ .stack .over, .v-expected:checked ~ .stack .divider, .v-expected:checked ~ .stack .slider,
+.v-expected:checked ~ .stack .tag.right, .v-mine:checked ~ .stack .divider, .v-mine:checked ~ .stack .slider,
+.v-mine:checked ~ .stack .tag.left { display: none; }
+.v-mine:checked ~ .stack .over { clip-path: none; }
+.open { font-size: 12px; color: var(--muted); margin-top: 4px; }
 figure { margin: 0; }
 figure img { display: block; image-rendering: pixelated; image-rendering: crisp-edges; background: #000;
   border: 1px solid var(--line); }
@@ -108,6 +145,7 @@ figcaption { font-size: 12.5px; color: var(--muted); text-align: center; margin-
 .metric.shown .m-value { color: #424a53; font-weight: 500; }
 
 table.checks .check-name { font-weight: 600; }
+table.checks .inputs { color: var(--muted); font-size: 12.5px; margin-top: 4px; }
 ul.examples { margin: 6px 0 0; padding-left: 18px; }
 ul.examples code { font-size: 12.5px; background: #f6f8fa; padding: 1px 4px; border-radius: 4px;
   overflow-wrap: anywhere; }
@@ -122,6 +160,23 @@ table.gradebook td.total-cell { font-weight: 700; }
 .cell-compile_error { color: var(--orange); } .cell-timeout { color: var(--warn); }
 .cell-not_implemented { color: var(--idle); }
 table.gradebook tfoot td { font-weight: 600; border-top: 2px solid var(--line); border-bottom: 0; }
+/* Fifteen stages fit 1280 px: names run upwards, the name column stays in view when it does not fit. */
+table.gradebook th, table.gradebook td { padding: 6px 6px; }
+table.gradebook thead th { vertical-align: bottom; }
+table.gradebook th.stage-col { padding: 6px 3px; text-transform: none; letter-spacing: 0; }
+table.gradebook th.stage-col .up { display: inline-block; writing-mode: vertical-rl; transform: rotate(180deg);
+  font-family: ui-monospace, "DejaVu Sans Mono", Menlo, Consolas, monospace; font-size: 12px; color: var(--ink); }
+table.gradebook .who { position: sticky; left: 0; z-index: 1; background: var(--card); min-width: 200px;
+  max-width: 340px; overflow-wrap: anywhere; }
+table.gradebook thead .who { text-transform: none; }
+table.gradebook tbody tr:hover td.who { background: #f6f8fa; }
+table.gradebook td.cell .note { font-size: 10.5px; line-height: 1.15; white-space: normal; margin-top: 2px; }
+.probs { margin-top: 3px; font-size: 12.5px; line-height: 1.4; }
+.prob { margin-top: 2px; }
+.prob b { font-weight: 600; }
+.p-compile_error b { color: var(--orange); } .p-crashed b, .p-error b, .p-failed b { color: var(--fail); }
+.p-timeout b { color: var(--warn); } .p-not_implemented, .p-not_implemented b { color: var(--muted); font-weight: 400; }
+.prob .why { font-family: ui-monospace, "DejaVu Sans Mono", Menlo, Consolas, monospace; font-size: 12px; }
 
 footer { text-align: center; color: var(--muted); font-size: 12.5px; padding: 8px 0 28px; }
 @media print { body { background: #fff; } .card { box-shadow: none; break-inside: avoid-page; } }
@@ -148,6 +203,18 @@ document.querySelectorAll('table.sortable').forEach(function (table) {
       rows.forEach(function (row) { body.appendChild(row); });
     });
   });
+});
+)js";
+
+// The comparisons' sliders: each moves the split of its own stack. Without
+// this script the split stays in the middle and the buttons still work.
+const char* const compareSliderScript = R"js(
+document.documentElement.classList.add('scripted');
+document.querySelectorAll('.compare .slider').forEach(function (slider) {
+  var stack = slider.parentNode;
+  function update() { stack.style.setProperty('--split', slider.value + '%'); }
+  slider.addEventListener('input', update);
+  update();
 });
 )js";
 

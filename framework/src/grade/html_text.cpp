@@ -98,6 +98,8 @@ std::string formatNumber(double value, int decimals) {
 }
 
 std::string formatScore(std::optional<double> score, std::optional<double> maxScore) {
+    // Nothing to earn (a worked example): no "0 / 0".
+    if (maxScore && *maxScore == 0.0) return score && *score != 0.0 ? formatNumber(*score, 2) : "not graded";
     const std::string value = score ? formatNumber(*score, 2) : "\u2013";
     return maxScore ? value + " / " + formatNumber(*maxScore, 2) : value;
 }
@@ -106,6 +108,36 @@ std::string formatSeconds(double seconds) {
     if (seconds < 60.0) return formatNumber(seconds, 1) + " s";
     const long total = std::lround(seconds);
     return std::to_string(total / 60) + " min " + std::to_string(total % 60) + " s";
+}
+
+namespace {
+
+// [6, 7, 5] -> "6 x 7 x 5"; anything else as JSON.
+std::string triple(const json& values) {
+    if (!values.is_array()) return values.dump();
+    std::string out;
+    for (const json& v : values)
+        out += (out.empty() ? "" : " x ") + (v.is_number() ? formatNumber(v.get<double>(), 6) : v.dump());
+    return out;
+}
+
+}  // namespace
+
+std::string checkInputsText(const json& inputs) {
+    std::string out;
+    const std::string seed = text(inputs, "seed");
+    if (!seed.empty()) out += "seed " + seed;
+    const json& volume = object(inputs, "volume");
+    if (!volume.empty()) {
+        out += std::string(out.empty() ? "" : "; ") + "random volume of " + triple(volume.value("dims", json())) +
+               " voxels, spacing " + triple(volume.value("spacing", json())) + " (box " +
+               triple(volume.value("extent", json())) + ")";
+        const std::string values = text(volume, "values");
+        if (!values.empty()) out += "; " + values;
+    }
+    const std::string units = text(inputs, "units");
+    if (!units.empty()) out += std::string(out.empty() ? "" : "; ") + "units: " + units;
+    return out;
 }
 
 std::string statusLabel(const std::string& status) {

@@ -31,10 +31,16 @@ const nlohmann::json& object(const nlohmann::json& parent, const char* key);
 
 // value with at most `decimals` decimals, trailing zeros dropped: 8.2, 10, 0.031.
 std::string formatNumber(double value, int decimals);
-// "8.2 / 10", "8.2", "– / 10" or "–".
+// "8.2 / 10", "8.2", "– / 10" or "–"; "not graded" out of 0 points (a worked example).
 std::string formatScore(std::optional<double> score, std::optional<double> maxScore);
 // "41.2 s", "3 min 5 s".
 std::string formatSeconds(double seconds);
+
+// A function check's "inputs" (function_checks.h: CheckComparison::inputs) in
+// one line of plain text: "seed 0x5EED000A; random volume 6 x 7 x 5 voxels,
+// spacing 1.3 x 0.8 x 1.1 (box ...); data value = ...; units: ...". Empty
+// when there is nothing to say.
+std::string checkInputsText(const nlohmann::json& inputs);
 
 // "not_implemented" -> "not implemented".
 std::string statusLabel(const std::string& status);
@@ -51,5 +57,7 @@ std::string page(const std::string& title, const std::string& body, const std::s
 // (html_report_style.cpp).
 extern const char* const reportStyleSheet;
 extern const char* const sortableTableScript;
+// Moves the split of each comparison (.compare .slider) as its slider moves.
+extern const char* const compareSliderScript;
 
 }  // namespace voxlab::html

@@ -4,14 +4,17 @@
 // partial results do not crash; an unwritable folder is an error.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "voxlab/error.h"
+#include "voxlab/grader.h"
 #include "voxlab/html_report.h"
 #include "voxlab/image.h"
 
@@ -85,9 +88,12 @@ json fullResults(const fs::path& dir) {
         {"stages", json::array({
             {{"stage", "mip"}, {"title", "Maximum intensity projection"}, {"score", 8.2}, {"max_score", 10},
              {"status", "failed"}, {"message", "1 of 2 scenes over the bound"}, {"elapsed_s", 3.1},
+             {"about", "MIP of four datasets & a signed CT"},
              {"scenes", json::array({
                  {{"name", "bonsai_oblique"}, {"score", 1.6}, {"max_score", 2}, {"status", "failed"},
-                  {"message", "SSIM 0.973 below 0.98"},
+                  {"message", "SSIM 0.973 below 0.98"}, {"about", "the bonsai's <thin> branches"},
+                  {"scene_file", "mip/scenes/bonsai_oblique.json"},
+                  {"setup", "dataset: bonsai.nrrd; renderer: mip; size: [32, 24]"},
                   {"images", {{"reference", "mip/bonsai oblique.reference.png"},
                               {"submission", "mip/bonsai oblique.submission.png"},
                               {"flip", "mip/bonsai oblique.flip.png"},
@@ -104,6 +110,10 @@ json fullResults(const fs::path& dir) {
              {"checks", json::array({
                  {{"name", "mip_random_rays"}, {"description", "maximum along random rays"}, {"score", 0},
                   {"max_score", 2}, {"status", "failed"}, {"message", "37 of 200 cases differ"},
+                  {"inputs", {{"seed", "0x5EED000A"},
+                              {"volume", {{"dims", {6, 7, 5}}, {"spacing", {1.3, 0.8, 1.1}}, {"extent", {7.8, 5.6, 5.5}},
+                                          {"values", "data value = stored value x 65535 - 32768"}}},
+                              {"units", "world units for points"}}},
                   {"examples", json::array({"ray (0,0,1): expected 0.8 got 0.7", hostile})}}})}},
             {{"stage", "phong"}, {"title", "Phong shading"}, {"score", 0}, {"max_score", 10},
              {"status", "compile_error"}, {"message", "phong/phong.glsl did not compile"},
@@ -132,7 +142,7 @@ TEST(HtmlReport, ShowsEveryStageSceneAndCheck) {
     }
 }
 
-TEST(HtmlReport, EveryImageShownIsAFileInTheFolderAtTwiceItsSize) {
+TEST(HtmlReport, EveryImageShownIsAFileInTheFolderMagnifiedWithSharpPixels) {
     const fs::path dir = freshFolder("images");
     voxlab::writeHtmlReport(fullResults(dir), dir.string());
     const std::string html = readText(dir / "index.html");
@@ -145,10 +155,74 @@ TEST(HtmlReport, EveryImageShownIsAFileInTheFolderAtTwiceItsSize) {
         EXPECT_FALSE(fs::path(percentDecoded(source)).is_absolute()) << source;
         EXPECT_TRUE(fs::is_regular_file(dir / percentDecoded(source))) << source;
     }
-    // 32 x 24 images are shown at 64 x 48, pixels kept sharp.
-    EXPECT_EQ(attributeValues(html, "width"), std::vector<std::string>(6, "64"));
-    EXPECT_EQ(attributeValues(html, "height"), std::vector<std::string>(6, "48"));
+    // 32 x 24 images: the failed scene's comparison at 16 times (the largest
+    // whole factor within 512 px), its maps at half that; the passed scene's
+    // comparison at half size.
+    EXPECT_EQ(attributeValues(html, "width"), (std::vector<std::string>{"512", "512", "256", "256", "256", "256"}));
+    EXPECT_EQ(attributeValues(html, "height"), (std::vector<std::string>{"384", "384", "192", "192", "192", "192"}));
     EXPECT_NE(html.find("image-rendering: pixelated"), std::string::npos);
+}
+
+// Each comparison stacks the student's image over the expected one, split
+// by a slider, with buttons for either alone and for a larger view; a
+// self-check calls them "Expected" and "Yours".
+TEST(HtmlReport, ComparesTheImagesWithASliderAndButtons) {
+    const fs::path dir = freshFolder("compare");
+    json results = fullResults(dir);
+    voxlab::writeHtmlReport(results, dir.string());
+    std::string html = readText(dir / "index.html");
+    const std::size_t compare = html.find("<div class=\"compare\">");
+    ASSERT_NE(compare, std::string::npos);
+    const std::size_t under = html.find("class=\"under\" src=\"mip/bonsai%20oblique.reference.png\"", compare);
+    const std::size_t over = html.find("class=\"over\" src=\"mip/bonsai%20oblique.submission.png\"", compare);
+    EXPECT_LT(under, over);
+    EXPECT_NE(html.find("type=\"range\" class=\"slider\"", over), std::string::npos);
+    for (const char* control : {"type=\"radio\" class=\"v-split\"", "type=\"radio\" class=\"v-expected\"",
+                                "type=\"radio\" class=\"v-mine\"", "type=\"checkbox\" class=\"v-zoom\"",
+                                ">Enlarge</label>", ">Reference</label>", ">Submission</label>"})
+        EXPECT_NE(html.find(control, compare), std::string::npos) << control;
+    // Radio groups are per scene: two scenes with images, two groups.
+    std::set<std::string> groups;
+    const std::regex radio("type=\"radio\" class=\"v-[a-z]+\" name=\"([^\"]+)\"");
+    for (auto it = std::sregex_iterator(html.begin(), html.end(), radio); it != std::sregex_iterator(); ++it)
+        groups.insert((*it)[1]);
+    EXPECT_EQ(groups.size(), 2u);
+
+    results["mode"] = "check";
+    voxlab::writeHtmlReport(results, dir.string());
+    html = readText(dir / "index.html");
+    EXPECT_NE(html.find(">Expected</label>"), std::string::npos);
+    EXPECT_NE(html.find(">Yours</label>"), std::string::npos);
+    EXPECT_EQ(html.find(">Submission</label>"), std::string::npos);
+}
+
+// The stage's and the scene's "about", the scene file and its settings.
+TEST(HtmlReport, ShowsWhatEachStageAndSceneIsAbout) {
+    const fs::path dir = freshFolder("about");
+    voxlab::writeHtmlReport(fullResults(dir), dir.string());
+    const std::string html = readText(dir / "index.html");
+    const std::size_t scene = html.find("id=\"stage-mip-bonsai_oblique\"");
+    ASSERT_NE(scene, std::string::npos);
+    EXPECT_LT(html.find("MIP of four datasets &amp; a signed CT"), scene);
+    const std::size_t images = html.find("<div class=\"compare\">", scene);
+    for (const char* text : {"the bonsai&#39;s &lt;thin&gt; branches", "mip/scenes/bonsai_oblique.json",
+                             "dataset: bonsai.nrrd; renderer: mip; size: [32, 24]"}) {
+        const std::size_t at = html.find(text, scene);
+        EXPECT_LT(at, images) << text << " is not shown with its scene, before its images";
+    }
+}
+
+// A failing check says how to rebuild its inputs: seed, volume, units.
+TEST(HtmlReport, SaysHowToReproduceAFailingCheck) {
+    const fs::path dir = freshFolder("inputs");
+    voxlab::writeHtmlReport(fullResults(dir), dir.string());
+    const std::string html = readText(dir / "index.html");
+    const std::size_t check = html.find(">mip_random_rays<");
+    ASSERT_NE(check, std::string::npos);
+    for (const char* text : {"seed 0x5EED000A", "random volume of 6 x 7 x 5 voxels", "spacing 1.3 x 0.8 x 1.1",
+                             "(box 7.8 x 5.6 x 5.5)", "data value = stored value x 65535 - 32768",
+                             "units: world units for points"})
+        EXPECT_NE(html.find(text, check), std::string::npos) << text;
 }
 
 TEST(HtmlReport, EscapesTextFromResults) {
@@ -158,7 +232,11 @@ TEST(HtmlReport, EscapesTextFromResults) {
     voxlab::writeHtmlReport(results, dir.string());
     const std::string html = readText(dir / "index.html");
     EXPECT_EQ(html.find(hostile), std::string::npos);
-    EXPECT_EQ(html.find("<script"), std::string::npos) << "the submission's page needs no script";
+    // One script, inline: the comparisons' sliders.
+    const std::size_t script = html.find("<script");
+    ASSERT_NE(script, std::string::npos);
+    EXPECT_EQ(html.find("<script", script + 1), std::string::npos);
+    EXPECT_EQ(html.compare(script, 9, "<script>\n"), 0) << "the script is inline";
     EXPECT_NE(html.find(hostileEscaped), std::string::npos);
     EXPECT_EQ(html.find("<b>"), std::string::npos);
     EXPECT_NE(html.find("bob &quot;&amp;&quot; &lt;b&gt;"), std::string::npos);
@@ -269,6 +347,264 @@ TEST(ClassHtmlReport, ListsEverySubmissionWithLinksToItsReport) {
     // Rows sort from their cells' data-sort keys.
     EXPECT_NE(html.find("data-sort=\"12.5\""), std::string::npos);
     EXPECT_NE(html.find("addEventListener('click'"), std::string::npos);
+}
+
+// The page's text without tags and attribute values (a title= tooltip
+// does not count as shown).
+std::string visibleText(const std::string& html) {
+    return std::regex_replace(html, std::regex("<[^>]*>"), " ");
+}
+
+// A class in which bob's mip did not compile and carol has not started.
+json classGradebook() {
+    const auto stage = [](const char* name, double score, double max, const char* status, const char* message) {
+        return json{{"stage", name}, {"score", score}, {"max_score", max}, {"status", status}, {"message", message}};
+    };
+    const json example = stage("slicer", 0, 0, "example", "every scene and check within its tolerance");
+    return {{"submissions", json::array({
+        {{"name", "alice"}, {"stages", json::array({example, stage("mip", 10, 10, "passed", ""),
+                                                    stage("iso", 4, 10, "failed", "2 of 5 items outside tolerance")})}},
+        {{"name", "bob_with_a_long_name"},
+         {"stages", json::array({example, stage("mip", 0, 10, "compile_error",
+                                                "mip/mip.glsl:21:2: error: syntax error, unexpected BASIC_TYPE_TOK"),
+                                 stage("iso", 0, 10, "not_implemented", "iso_hit is not yet implemented")})}},
+        {{"name", "carol"}, {"stages", json::array({example, stage("mip", 0, 10, "not_implemented", ""),
+                                                    stage("iso", 0, 10, "not_implemented", "")})}}})}};
+}
+
+TEST(ClassHtmlReport, ACompileErrorIsVisibleTextInItsRow) {
+    const fs::path dir = freshFolder("class_compile_error");
+    voxlab::writeClassHtmlReport(classGradebook(), dir.string());
+    const std::string html = readText(dir / "index.html");
+    const std::size_t row = html.find("<tr><td class=\"who\" data-sort=\"bob_with_a_long_name\"");
+    ASSERT_NE(row, std::string::npos);
+    const std::string text = visibleText(html.substr(row, html.find("</tr>", row) - row));
+    // In the name's cell, with its message, before the unfinished stage...
+    const std::size_t error = text.find("compile error");
+    EXPECT_NE(error, std::string::npos) << text;
+    EXPECT_NE(text.find("mip/mip.glsl:21:2: error: syntax error", error), std::string::npos) << text;
+    EXPECT_LT(error, text.find("not implemented")) << text;
+    // ... and under the stage's score.
+    EXPECT_NE(html.find("<div class=\"note\">compile error</div>", row), std::string::npos);
+}
+
+// Fifteen stages with long names: each heading runs upwards (its width
+// does not grow with the name) and long submission names may break at
+// underscores. Whether the page then fits 1280 px is a browser's to say:
+// the page is left in the test's temp folder (voxlab_html_report_class_wide)
+// for a look.
+TEST(ClassHtmlReport, FifteenStagesWithLongNamesRunUpwards) {
+    const fs::path dir = freshFolder("class_wide");
+    json submissions = json::array();
+    for (const char* name : {"a_student_with_a_very_long_name_indeed", "bob", "carol"}) {
+        json stages = json::array();
+        for (int i = 0; i < 15; ++i)
+            stages.push_back({{"stage", "a_rather_long_stage_name_" + std::to_string(i)}, {"score", 7.25},
+                              {"max_score", 10}, {"status", i == 3 ? "compile_error" : "failed"},
+                              {"message", i == 3 ? "stage_3/stage.glsl:12:4: error: 'sample_volume' : no matching "
+                                                   "overloaded function found" : "2 of 5 items outside tolerance"}});
+        submissions.push_back({{"name", name}, {"stages", stages}});
+    }
+    voxlab::writeClassHtmlReport(submissions, dir.string());
+    const std::string html = readText(dir / "index.html");
+    for (int i = 0; i < 15; ++i) {
+        const std::string heading = "<span class=\"up\">a_rather_long_stage_name_" + std::to_string(i) + "</span>";
+        EXPECT_NE(html.find(heading), std::string::npos) << heading;
+    }
+    EXPECT_NE(html.find("writing-mode: vertical-rl"), std::string::npos);
+    EXPECT_NE(html.find(">a_<wbr>student_<wbr>with_<wbr>a_<wbr>very_<wbr>long_<wbr>name_<wbr>indeed</a>"),
+              std::string::npos);
+}
+
+// A stage worth 0 points in every submission (the worked example) has no
+// column, and no "x / 0" appears on either page.
+TEST(ClassHtmlReport, AWorkedExampleHasNoOutOfZeroColumn) {
+    const fs::path dir = freshFolder("class_example");
+    const json gradebook = classGradebook();
+    voxlab::writeClassHtmlReport(gradebook, dir.string());
+    const std::string html = readText(dir / "index.html");
+    EXPECT_EQ(html.find(">slicer<"), std::string::npos);
+    EXPECT_EQ(std::regex_search(html, std::regex("/ 0(?![.0-9])")), false);
+    EXPECT_NE(html.find(">mip<"), std::string::npos);
+    EXPECT_NE(html.find("/ 10"), std::string::npos);
+
+    voxlab::writeHtmlReport(gradebook["submissions"][0], dir.string());
+    const std::string report = readText(dir / "index.html");
+    EXPECT_NE(report.find("slicer"), std::string::npos);
+    EXPECT_EQ(std::regex_search(report, std::regex("/ 0(?![.0-9])")), false);
+    EXPECT_NE(report.find("not graded"), std::string::npos);
+}
+
+// Problems worst first, whatever order the stages were graded in: compile
+// error, crashed, timeout, error, failed, not implemented.
+TEST(ClassHtmlReport, ProblemsComeWorstFirst) {
+    const auto stage = [](const char* name, const char* status) {
+        return json{{"stage", name}, {"status", status}, {"score", 0}, {"max_score", 10},
+                    {"message", "m " + std::string(name)}};
+    };
+    const json results = {{"name", "dave"},
+                          {"stages", json::array({stage("a", "not_implemented"), stage("b", "failed"),
+                                                  stage("c", "passed"), stage("d", "error"), stage("e", "timeout"),
+                                                  stage("f", "crashed"), stage("g", "compile_error"),
+                                                  stage("h", "example"), stage("i", "not_implemented")})}};
+    std::vector<std::string> order;
+    for (const voxlab::StageProblem& p : voxlab::stageProblems(results)) order.push_back(p.stage + ":" + p.status);
+    EXPECT_EQ(order, (std::vector<std::string>{"g:compile_error", "f:crashed", "e:timeout", "d:error", "b:failed",
+                                               "a:not_implemented", "i:not_implemented"}));
+    EXPECT_EQ(voxlab::problemsSummary(results),
+              "g: compile_error (m g); f: crashed (m f); e: timeout (m e); d: error (m d); b: failed; "
+              "a: not_implemented; i: not_implemented");
+
+    const fs::path dir = freshFolder("class_order");
+    voxlab::writeClassHtmlReport(json::array({results}), dir.string());
+    const std::string text = visibleText(readText(dir / "index.html"));
+    std::size_t at = 0;
+    for (const char* label : {"compile error", "crashed", "timeout", "error", "failed", "not implemented"}) {
+        const std::size_t next = text.find(label, at);
+        ASSERT_NE(next, std::string::npos) << label << " missing or out of order";
+        at = next;
+    }
+}
+
+// ---------------------------------------------------------------------------
+// results.json (grader.h: gradescopeResults)
+
+// Noise does not compress, so each image's size is predictable.
+void writeNoisePng(const fs::path& path, int width, int height, unsigned seed) {
+    voxlab::Image image(width, height);
+    for (float& v : image.rgba) {
+        seed = seed * 1664525u + 1013904223u;
+        v = float(seed >> 24) / 255.0f;
+    }
+    fs::create_directories(path.parent_path());
+    voxlab::savePng(image, path.string());
+}
+
+json failedScene(const std::string& stage, const std::string& name) {
+    const std::string base = stage + "/" + name;
+    return {{"name", name}, {"status", "failed"}, {"score", 0}, {"max_score", 1}, {"message", "SSIM 0.5 < 0.98"},
+            {"images", {{"reference", base + ".reference.png"}, {"submission", base + ".submission.png"},
+                        {"flip", base + ".flip.png"}, {"difference", base + ".difference.png"}}}};
+}
+
+void writeSceneImages(const fs::path& dir, const std::string& stage, const std::string& name, int w, int h) {
+    unsigned seed = unsigned(std::hash<std::string>()(stage + name));
+    for (const char* kind : {"reference", "submission", "flip", "difference"})
+        writeNoisePng(dir / stage / (name + "." + kind + ".png"), w, h, seed++);
+}
+
+// The base64 text of each src="data:image/png;base64,..." (found by hand:
+// std::regex recurses per character and overflows the stack on long ones).
+std::vector<std::string> dataUris(const std::string& output) {
+    std::vector<std::string> uris;
+    const std::string prefix = "src=\"data:image/png;base64,";
+    for (std::size_t at = output.find(prefix); at != std::string::npos; at = output.find(prefix, at)) {
+        at += prefix.size();
+        const std::size_t end = output.find('"', at);
+        if (end == std::string::npos) break;
+        uris.push_back(output.substr(at, end - at));
+    }
+    return uris;
+}
+
+std::string decodeBase64(const std::string& text) {
+    std::string out;
+    int bits = 0, value = 0;
+    for (char c : text) {
+        const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        const char* at = std::strchr(digits, c);
+        if (c == '=' || !at) break;
+        value = value << 6 | int(at - digits), bits += 6;
+        if (bits >= 8) out += char((value >> (bits - 8)) & 255), bits -= 8;
+    }
+    return out;
+}
+
+// A PNG's width and height from its header (IHDR), or -1, -1.
+std::pair<int, int> pngSize(const std::string& png) {
+    if (png.size() < 24 || png.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0 || png.compare(12, 4, "IHDR") != 0)
+        return {-1, -1};
+    const auto word = [&](std::size_t at) {
+        return int(std::uint8_t(png[at])) << 24 | int(std::uint8_t(png[at + 1])) << 16 |
+               int(std::uint8_t(png[at + 2])) << 8 | int(std::uint8_t(png[at + 3]));
+    };
+    return {word(16), word(20)};
+}
+
+const json* findTest(const json& results, const std::string& name) {
+    for (const json& t : results["tests"])
+        if (t["name"] == name) return &t;
+    return nullptr;
+}
+
+// A failed scene shows the expected image, the student's and the
+// difference as PNGs in HTML output, at most 256 px on a side (a 600 x 300
+// render is shrunk to 200 x 100); a passed one, and any results written
+// without the report's folder, stay text.
+TEST(GradescopeResults, AFailedSceneShowsItsImagesAsPngs) {
+    const fs::path dir = freshFolder("results_images");
+    writeSceneImages(dir, "mip", "small", 128, 128);
+    writeSceneImages(dir, "mip", "wide", 600, 300);
+    json passed = failedScene("mip", "small");
+    passed["name"] = "fine", passed["status"] = "passed", passed["score"] = 1;
+    const json report = {{"score", 1}, {"max_score", 3}, {"stages", json::array({
+        {{"stage", "mip"}, {"title", "MIP"}, {"status", "failed"}, {"score", 1}, {"max_score", 3},
+         {"scenes", json::array({failedScene("mip", "small"), failedScene("mip", "wide"), passed})}}})}};
+
+    const json results = voxlab::gradescopeResults(report, dir.string());
+    const std::pair<std::string, std::pair<int, int>> expected[] = {{"MIP: small", {128, 128}},
+                                                                     {"MIP: wide", {200, 100}}};
+    for (const auto& [name, size] : expected) {
+        const json* test = findTest(results, name);
+        ASSERT_NE(test, nullptr) << name;
+        EXPECT_EQ(test->value("output_format", ""), "html") << name;
+        const std::string output = (*test)["output"];
+        EXPECT_NE(output.find("SSIM 0.5 &lt; 0.98"), std::string::npos) << "the message is escaped HTML";
+        const std::vector<std::string> uris = dataUris(output);
+        ASSERT_EQ(uris.size(), 3u) << name;
+        for (const std::string& uri : uris) EXPECT_EQ(pngSize(decodeBase64(uri)), size) << name;
+    }
+    EXPECT_FALSE(findTest(results, "MIP: fine")->contains("output_format"));
+    EXPECT_TRUE(dataUris(findTest(results, "MIP: fine")->value("output", "")).empty());
+    for (const json& t : voxlab::gradescopeResults(report)["tests"]) {
+        EXPECT_FALSE(t.contains("output_format")) << t["name"];
+        EXPECT_TRUE(dataUris(t.value("output", "")).empty()) << t["name"];
+    }
+}
+
+// The images of one results.json stay within kResultsImageBudget: noise
+// images of 128 px take about 200 KB a scene, so five of six fit. The
+// first failed scene of every stage comes before the others.
+TEST(GradescopeResults, ImagesStayWithinTheBudgetFirstScenesFirst) {
+    const fs::path dir = freshFolder("results_budget");
+    json first = json::array(), second = json::array();
+    for (int i = 1; i <= 4; ++i) {
+        writeSceneImages(dir, "a", "a" + std::to_string(i), 128, 128);
+        first.push_back(failedScene("a", "a" + std::to_string(i)));
+    }
+    for (int i = 1; i <= 2; ++i) {
+        writeSceneImages(dir, "b", "b" + std::to_string(i), 128, 128);
+        second.push_back(failedScene("b", "b" + std::to_string(i)));
+    }
+    const json report = {{"stages", json::array({
+        {{"stage", "a"}, {"title", "A"}, {"status", "failed"}, {"score", 0}, {"max_score", 4}, {"scenes", first}},
+        {{"stage", "b"}, {"title", "B"}, {"status", "failed"}, {"score", 0}, {"max_score", 2}, {"scenes", second}}})}};
+    const json results = voxlab::gradescopeResults(report, dir.string());
+    std::size_t total = 0;
+    int withImages = 0, leftOut = 0;
+    for (const json& t : results["tests"]) {
+        for (const std::string& uri : dataUris(t.value("output", "")))
+            total += uri.size() + 22;  // and "data:image/png;base64,"
+        const bool images = !dataUris(t.value("output", "")).empty();
+        withImages += images;
+        leftOut += t.value("output", "").find("Images left out") != std::string::npos;
+    }
+    EXPECT_LE(total, voxlab::kResultsImageBudget);
+    EXPECT_GE(withImages, 2);
+    EXPECT_GE(leftOut, 1) << "six scenes of noise should not all fit";
+    EXPECT_EQ(withImages + leftOut, 6);
+    EXPECT_FALSE(dataUris(findTest(results, "B: b1")->value("output", "")).empty()) << "b1 is its stage's first";
+    EXPECT_TRUE(dataUris(findTest(results, "B: b2")->value("output", "")).empty()) << "b2 comes last";
 }
 
 }  // namespace

@@ -70,8 +70,16 @@ void renderExpectedOutputs(const GraderOptions& options);
 std::vector<nlohmann::json> gradeSubmissions(const std::vector<Submission>& submissions,
                                              const GraderOptions& options);
 
-// Gradescope's results.json for a report.
-nlohmann::json gradescopeResults(const nlohmann::json& report);
+// Gradescope's results.json for a report. With the report's folder, each
+// scene that did not pass but has the submission's image shows it, the
+// expected image and the difference map in its output ("output_format":
+// "html", PNG data: URIs, each image at most kResultsImageSide px on its
+// longer side), the first such scene of every stage first (stages not
+// implemented yet last), until the images take kResultsImageBudget
+// characters; the others say so.
+inline constexpr std::size_t kResultsImageBudget = std::size_t(1) << 20;
+inline constexpr int kResultsImageSide = 256;
+nlohmann::json gradescopeResults(const nlohmann::json& report, const std::string& reportDir = "");
 
 // A terminal table: stage, status, score, message.
 std::string summaryTable(const nlohmann::json& report);

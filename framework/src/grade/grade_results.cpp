@@ -1,8 +1,13 @@
 // voxlab grader: Gradescope's results.json and the terminal summary.
+#include <stb_image.h>
+#include <stb_image_write.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
+#include "html_text.h"
 #include "voxlab/grader.h"
 
 namespace voxlab {
@@ -56,7 +61,124 @@ std::vector<long long> apportion(const std::vector<double>& values, long long to
 struct Test {
     json entry;
     double maxScore, score;
+    const json* scene = nullptr;  // the report's scene this test is, if it is one
 };
+
+// ---------------------------------------------------------------------------
+// Images in results.json: Gradescope shows nothing but this file, so a
+// failed scene's test carries its images as data: URIs in HTML output.
+
+std::string base64(const std::string& bytes) {
+    static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    out.reserve((bytes.size() + 2) / 3 * 4);
+    for (std::size_t i = 0; i < bytes.size(); i += 3) {
+        const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+        std::uint32_t v = 0;
+        for (std::size_t k = 0; k < 3; ++k) v = v << 8 | (k < n ? std::uint8_t(bytes[i + k]) : 0u);
+        for (std::size_t k = 0; k < 4; ++k) out += k <= n ? digits[(v >> (18 - 6 * k)) & 63] : '=';
+    }
+    return out;
+}
+
+void appendBytes(void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size));
+}
+
+struct EmbeddedImage {
+    std::string uri;  // data:image/png;base64,...; empty when the file could not be read
+    int width = 0, height = 0;
+};
+
+// The PNG at `path` as a data: URI, shrunk by a whole factor (averaging
+// each block of pixels) until its longer side is at most kResultsImageSide.
+EmbeddedImage embedPng(const std::string& path) {
+    int w = 0, h = 0, channels = 0;
+    unsigned char* pixels = stbi_load(path.c_str(), &w, &h, &channels, 3);
+    if (!pixels) return {};
+    const int f = (std::max(w, h) + kResultsImageSide - 1) / kResultsImageSide;
+    const int ow = std::max(1, w / f), oh = std::max(1, h / f);
+    std::vector<unsigned char> out(std::size_t(ow) * oh * 3);
+    for (int y = 0; y < oh; ++y)
+        for (int x = 0; x < ow; ++x)
+            for (int c = 0; c < 3; ++c) {
+                int sum = 0;
+                for (int dy = 0; dy < f; ++dy)
+                    for (int dx = 0; dx < f; ++dx) sum += pixels[(std::size_t(y * f + dy) * w + (x * f + dx)) * 3 + c];
+                out[(std::size_t(y) * ow + x) * 3 + c] = (unsigned char)((sum + f * f / 2) / (f * f));
+            }
+    stbi_image_free(pixels);
+    std::string png;
+    if (!stbi_write_png_to_func(appendBytes, &png, ow, oh, 3, out.data(), ow * 3) || png.empty()) return {};
+    return {"data:image/png;base64," + base64(png), ow, oh};
+}
+
+// Plain text as HTML: escaped, lines kept.
+std::string htmlLines(const std::string& text) {
+    std::string out;
+    for (std::size_t start = 0; start <= text.size();) {
+        const std::size_t end = std::min(text.find('\n', start), text.size());
+        out += (start ? "<br>" : "") + html::escape(text.substr(start, end - start));
+        start = end + 1;
+    }
+    return out;
+}
+
+// A failed scene's output with its expected image, the student's and the
+// difference map, shown at twice their size; nothing changes when they are
+// not all readable or do not fit in what is left of *budget.
+enum class Embedded { Yes, Unreadable, OverBudget };
+
+Embedded addSceneImages(json& entry, const json& scene, const std::string& reportDir, std::size_t* budget) {
+    const json& images = html::object(scene, "images");
+    const char* keys[] = {"reference", "submission", "difference"};
+    const char* captions[] = {"expected", "yours", "difference (red: pixels over the bound)"};
+    EmbeddedImage embedded[3];
+    std::size_t size = 0;
+    for (int i = 0; i < 3; ++i) {
+        const std::string path = html::text(images, keys[i]);
+        if (path.empty()) return Embedded::Unreadable;
+        embedded[i] = embedPng((std::filesystem::path(reportDir) / path).string());
+        if (embedded[i].uri.empty()) return Embedded::Unreadable;
+        size += embedded[i].uri.size();
+    }
+    if (size > *budget) return Embedded::OverBudget;
+    *budget -= size;
+    std::string out = "<p>" + htmlLines(entry["output"].get<std::string>()) + "</p>\n<p>";
+    for (const EmbeddedImage& image : embedded)
+        out += "<img src=\"" + image.uri + "\" width=\"" + std::to_string(2 * image.width) + "\" height=\"" +
+               std::to_string(2 * image.height) + "\" style=\"image-rendering: pixelated\" alt=\"\"> ";
+    out += "</p>\n<p>Left to right: " + std::string(captions[0]) + ", " + captions[1] + ", " + captions[2] + ".</p>";
+    entry["output"] = out;
+    entry["output_format"] = "html";
+    return Embedded::Yes;
+}
+
+// Embeds the images of failed scenes (see grader.h) while the budget
+// lasts: the first failed scene of each stage, then the others, in report
+// order; a stage that is not implemented yet (its images show a stub) after
+// all the others.
+void addImages(std::vector<std::vector<Test>>& stages, const std::vector<bool>& unfinished,
+               const std::string& reportDir) {
+    std::size_t budget = kResultsImageBudget;
+    std::vector<Test*> tiers[4];  // first of a stage, the rest; the same for unfinished stages
+    for (std::size_t s = 0; s < stages.size(); ++s) {
+        bool seen = false;
+        for (Test& t : stages[s]) {
+            if (!t.scene || t.scene->value("status", "") == "passed") continue;
+            if (!html::object(*t.scene, "images").contains("submission")) continue;
+            tiers[(unfinished[s] ? 2 : 0) + (seen ? 1 : 0)].push_back(&t);
+            seen = true;
+        }
+    }
+    std::vector<Test*> order;
+    for (const std::vector<Test*>& tier : tiers) order.insert(order.end(), tier.begin(), tier.end());
+    for (Test* t : order)
+        if (addSceneImages(t->entry, *t->scene, reportDir, &budget) == Embedded::OverBudget)
+            t->entry["output"] = t->entry["output"].get<std::string>() +
+                                 "\n(Images left out: results.json carries at most " +
+                                 std::to_string(kResultsImageBudget >> 10) + " KiB of them; the full report has all.)";
+}
 
 // The tests of one stage: one per scene and check, the all-pass share, or
 // one for a stage that produced no items (it did not compile, or timed out
@@ -70,31 +192,37 @@ std::vector<Test> stageTests(const json& stage) {
         if (hint.is_string()) stageNote += "\nHint: " + hint.get<std::string>();
     std::vector<Test> tests;
     const auto add = [&](const std::string& name, const json& item, const std::string& output,
-                         const std::string& visibility) {
+                         const std::string& visibility, const json* scene) {
         tests.push_back({{{"name", name},
                           {"status", item.value("status", "") == "passed" ? "passed" : "failed"},
                           {"output", output},
                           {"visibility", visibility}},
                          item.value("max_score", 0.0),
-                         item.value("score", 0.0)});
+                         item.value("score", 0.0),
+                         scene});
     };
     for (const char* kind : {"scenes", "checks"})
-        for (const json& item : stage.value(kind, json::array())) {
+        for (const json& item : html::array(stage, kind)) {  // a reference: scene tests point to their item
             std::string output = item.value("message", "");
             if (!stageNote.empty()) output += "\nStage: " + stageNote;
+            const std::string setup = html::text(item, "setup"), file = html::text(item, "scene_file");
+            if (!setup.empty()) output += "\nScene" + (file.empty() ? "" : " " + file) + ": " + setup;
+            const std::string inputs = html::checkInputsText(html::object(item, "inputs"));
+            if (!inputs.empty() && item.value("status", "") != "passed") output += "\nInputs: " + inputs;
             for (const json& ex : item.value("examples", json::array())) output += "\n  " + ex.get<std::string>();
             const std::string visibility =
                 item.value("visibility", item.value("hidden", false) ? "after_due_date" : "visible");
-            add(title + ": " + item.value("name", "?"), item, output, visibility);
+            add(title + ": " + item.value("name", "?"), item, output, visibility,
+                std::string(kind) == "scenes" ? &item : nullptr);
         }
     if (!tests.empty() && stage.contains("all_pass") && stage["all_pass"].value("max_score", 0.0) > 0.0)
         add(title + ": every scene and check passes", stage["all_pass"], stage["all_pass"].value("message", ""),
-            "visible");
+            "visible", nullptr);
     if (tests.empty()) {
         std::string output = stage.value("message", "");
         if (stage.contains("log")) output += "\n\n" + stage["log"].get<std::string>();
         add(title, {{"status", "failed"}, {"max_score", stage.value("max_score", 0.0)}, {"score", stage.value("score", 0.0)}},
-            output, "visible");
+            output, "visible", nullptr);
     }
     // Exact sums: the tests' points add up to the stage's, rounded once.
     std::vector<double> maxima, scores;
@@ -134,11 +262,18 @@ std::vector<Test> stageTests(const json& stage) {
 // assignment file: assignment.h). Each stage's tests add up to its score
 // rounded to hundredths, and the total is their sum (times the late factor
 // when there is one, which the output states).
-json gradescopeResults(const json& report) {
+json gradescopeResults(const json& report, const std::string& reportDir) {
     json tests = json::array();
     long long total = 0;
-    for (const json& stage : report.value("stages", json::array()))
-        for (Test& t : stageTests(stage)) {
+    std::vector<std::vector<Test>> stages;
+    std::vector<bool> unfinished;
+    for (const json& stage : html::array(report, "stages")) {
+        stages.push_back(stageTests(stage));
+        unfinished.push_back(html::text(stage, "status") == "not_implemented");
+    }
+    if (!reportDir.empty()) addImages(stages, unfinished, reportDir);
+    for (std::vector<Test>& stage : stages)
+        for (Test& t : stage) {
             total += cents(t.entry["score"].get<double>());
             tests.push_back(std::move(t.entry));
         }
@@ -147,6 +282,9 @@ json gradescopeResults(const json& report) {
     std::snprintf(summary, sizeof summary, "voxlab grader: %.2f of %.2f points. The full report with images is "
                   "index.html in the report folder.", score, report.value("max_score", 0.0));
     std::string output = summary;
+    if (!reportDir.empty())
+        output += "\nA scene that did not pass shows the expected image, yours and their difference (up to " +
+                  std::to_string(kResultsImageBudget >> 10) + " KiB of images in all).";
     if (report.contains("late")) {
         score = double(cents(score * report["late"].value("factor", 1.0))) / 100.0;
         std::snprintf(summary, sizeof summary, "; total %.2f.", score);

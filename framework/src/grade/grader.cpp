@@ -276,7 +276,7 @@ std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, c
         fs::remove_all(fs::path(sub.reportDir) / ".work");
         writeFileAtomically((fs::path(sub.reportDir) / "report.json").string(), report.dump(2) + "\n");
         writeFileAtomically((fs::path(sub.reportDir) / "results.json").string(),
-                            gradescopeResults(report).dump(2) + "\n");
+                            gradescopeResults(report, sub.reportDir).dump(2) + "\n");
         writeHtmlReport(report, sub.reportDir);
         reports.push_back(report);
     }

@@ -18,7 +18,8 @@
 //        "message": "one line", "log": "compiler log, mapped to the student's files", "elapsed_s": 3.1,
 //        "scenes": [
 //          {"name"*: "bonsai_oblique", "score": 1.6, "max_score": 2, "status"*: "passed | failed | error",
-//           "message": "one line",
+//           "message": "one line", "about": "what the scene shows", "scene_file": "mip/scenes/bonsai_oblique.json",
+//           "setup": "dataset: bonsai.nrrd; renderer: mip; ...",
 //           "images": {"reference": "mip/x.reference.png", "submission": "mip/x.submission.png",
 //                      "flip": "mip/x.flip.png", "difference": "mip/x.difference.png"},
 //           "metrics": {"fraction_over": 0.012, "max_difference": 37, "ssim": 0.973, "ssim_min": 0.41,
@@ -26,7 +27,9 @@
 //           "tolerance": {"max_difference": 4, "max_fraction": 0.005, "min_ssim": 0.98, "max_flip": 0.02}}],
 //        "checks": [
 //          {"name"*: "phong_random", "description": "...", "score": 0, "max_score": 2, "status"*: "failed",
-//           "message": "37 of 200 cases differ", "examples": ["n=(0,0,1) ... expected (..) got (..)"]}]}
+//           "message": "37 of 200 cases differ", "examples": ["n=(0,0,1) ... expected (..) got (..)"],
+//           "inputs": {"seed": "0x5EED000A", "volume": {"dims": [6, 7, 5], "spacing": [..], "extent": [..],
+//                      "values": "data value = ..."}, "units": "..."}}]}
 //     ]
 //   }
 //

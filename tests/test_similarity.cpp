@@ -106,6 +106,14 @@ TEST(SimilarityTokens, NamesCommentsLayoutAndBracesAreSetAside) {
     EXPECT_EQ(joined(tokenizeSource(a)), "float id ( vec3 id ) float id = 0 ; return max ( id , id . x ) ; ");
 }
 
+TEST(SimilarityTokens, BuiltinsAreKeptWhereCalledAndAreNamesElsewhere) {
+    EXPECT_EQ(joined(tokenizeSource("double length = glm::length(v); float step = max (a, b);")),
+              joined(tokenizeSource("double len = glm::length(v); float s = max(a, b);")));
+    EXPECT_EQ(joined(tokenizeSource("n = points.size(); std::sort(p.begin(), p.end());")),
+              "id = id . size ( ) ; std :: sort ( id . begin ( ) , id . end ( ) ) ; ");
+    EXPECT_NE(joined(tokenizeSource("x = max(a, b);")), joined(tokenizeSource("x = min(a, b);")));
+}
+
 TEST(SimilarityTokens, NumbersAreKeptByValueAndPreprocessorLinesDropped) {
     EXPECT_EQ(joined(tokenizeSource("#include \"x.glsl\"\n#define A \\\n  1\nx = 1.0f + 1. + 1e0 + 0x1;")),
               "id = 1 + 1 + 1 + 1 ; ");

@@ -10,12 +10,15 @@
 // Tokens. What a student copying a solution changes costs nothing to change:
 // names, comments, layout, braces. So
 //  - comments and whitespace are dropped;
-//  - an identifier that is a GLSL or C++ keyword, type or builtin (max, mix,
-//    texture, normalize, std::abs, ...) is kept as itself: which builtins a
-//    solution calls is part of how it was written; any other identifier
-//    (variables, the student's helpers, and the framework's functions too)
-//    becomes one token class, so renaming hides nothing. A swizzle after a
-//    dot (.xyz, .rgb) is kept: it cannot be renamed;
+//  - GLSL and C++ keywords and types are kept as themselves, and so are
+//    builtin and library functions where they are called or named through
+//    a namespace or object (max(, mix(, glm::length, points.size): which
+//    builtins a solution calls is part of how it was written, while a
+//    variable named `length` is a name like any other. Every other
+//    identifier (variables, the student's helpers, and the framework's
+//    functions too) becomes one token class, so renaming hides nothing
+//    (keeping `length` as a variable cost the texslice3d copy 0.03). A
+//    swizzle after a dot (.xyz, .rgb) is kept: it cannot be renamed;
 //  - numbers are kept by value, spelled one way (1.0, 1., 1.0f, 1e0 are one
 //    token). A constant such as -3.4e38 or 1e-4 is a trace of the author, and
 //    changing one changes what the code does, which copying avoids. Measured:
@@ -35,9 +38,11 @@
 // statement (`maximum = max(maximum, v);` is 9), and w = 4 makes every match
 // of 11 tokens or more certain to be seen. Over k in 5..15 and w in 1..8, the
 // gap between the lowest copy's score and the highest independent pair's
-// (with 30 matching tokens or more) was widest at k 8, w 4 (0.78 against
-// 0.32); k 10-12 came close. Stage solutions are small (5 to 45 lines), so
-// much larger k or w leaves a short stage a handful of fingerprints.
+// (with 30 matching tokens or more) was 0.49 at k 8, w 4 (0.81 against
+// 0.32), and 0.51 at k 7, w 6 or 8, where an independent pair (under 30
+// tokens) reached 0.5 or more fingerprints were thinned out; k 12 and more
+// narrowed it (copies at 0.72 and less). Stage solutions are small (5 to 45
+// lines): much larger k or w leaves a short stage a handful of fingerprints.
 //
 // What is not evidence is removed before comparing:
 //  - fingerprints whose k-gram occurs anywhere in the stage's starter code
@@ -55,7 +60,7 @@
 // the code is too short to say anything. A renamed copy of the whole MIP
 // stage still has 48 and is flagged.
 //
-// Threshold 0.5: on the corpus, the disguised copies score 0.78 (texslice3d),
+// Threshold 0.5: on the corpus, the disguised copies score 0.81 (texslice3d),
 // 0.87, 0.92 and 1 (mip); independent pairs at most 0.36 (0.32 among pairs
 // with 30 matching tokens or more). 0.5 lies between, nearer the independent
 // side: a pair shown needlessly costs a person a minute, a copy missed is
@@ -89,9 +94,9 @@ using nlohmann::json;
 
 namespace {
 
-// GLSL and C++ words kept as themselves: keywords, types, builtin functions
-// and variables, and the standard library's and GLM's common names.
-const std::unordered_set<std::string_view>& keptWords() {
+// GLSL and C++ words always kept as themselves: keywords, qualifiers, types
+// and builtin variables.
+const std::unordered_set<std::string_view>& keywords() {
     static const std::unordered_set<std::string_view> words = {
         // C++ keywords
         "alignas", "alignof", "and", "asm", "auto", "bool", "break", "case", "catch", "char", "class", "const",
@@ -107,17 +112,26 @@ const std::unordered_set<std::string_view>& keptWords() {
         "ivec2", "ivec3", "ivec4", "uvec2", "uvec3", "uvec4", "bvec2", "bvec3", "bvec4", "dvec2", "dvec3",
         "dvec4", "mat2", "mat3", "mat4", "mat2x3", "mat2x4", "mat3x2", "mat3x4", "mat4x2", "mat4x3", "dmat3",
         "dmat4", "sampler1D", "sampler2D", "sampler3D", "samplerCube", "isampler3D", "usampler3D",
-        "sampler2DArray", "sampler2DShadow",
-        // GLSL builtin functions and variables
+        "sampler2DArray", "sampler2DShadow", "gl_FragCoord", "gl_FragColor", "gl_FragDepth", "gl_Position",
+        "std", "glm", "size_t"};
+    return words;
+}
+
+// Builtin and library functions: kept where they are called or named
+// through a namespace or an object (`max(`, `glm::length`, `points.size`),
+// so that a variable called `length` or `step` is a name like any other.
+const std::unordered_set<std::string_view>& libraryNames() {
+    static const std::unordered_set<std::string_view> words = {
+        // GLSL builtin functions
         "radians", "degrees", "sin", "cos", "tan", "asin", "acos", "atan", "sinh", "cosh", "tanh", "pow", "exp",
         "log", "exp2", "log2", "sqrt", "inversesqrt", "abs", "sign", "floor", "trunc", "round", "roundEven",
         "ceil", "fract", "mod", "modf", "min", "max", "clamp", "mix", "step", "smoothstep", "isnan", "isinf",
         "fma", "length", "distance", "dot", "cross", "normalize", "faceforward", "reflect", "refract",
         "transpose", "determinant", "inverse", "lessThan", "lessThanEqual", "greaterThan", "greaterThanEqual",
         "equal", "notEqual", "any", "all", "texture", "textureLod", "textureSize", "texelFetch", "texture3D",
-        "texture2D", "dFdx", "dFdy", "fwidth", "gl_FragCoord", "gl_FragColor", "gl_FragDepth", "gl_Position",
+        "texture2D", "dFdx", "dFdy", "fwidth",
         // C++ standard library and GLM
-        "std", "glm", "size_t", "vector", "array", "pair", "swap", "sort", "size", "push_back", "emplace_back",
+        "vector", "array", "pair", "swap", "sort", "size", "push_back", "emplace_back",
         "begin", "end", "back", "front", "empty", "erase", "isfinite", "numeric_limits", "infinity", "epsilon",
         "lowest", "fabs", "fmin", "fmax", "hypot", "atan2", "lerp", "remove_if", "unique", "min_element",
         "max_element"};
@@ -231,8 +245,12 @@ std::vector<SourceToken> tokenizeSource(std::string_view text) {
         } else if (identStart(c)) {
             while (next < text.size() && identChar(text[next])) ++next;
             const std::string_view word = text.substr(i, next - i);
-            const bool member = !tokens.empty() && tokens.back().text == ".";
-            const bool kept = keptWords().count(word) || (member && isSwizzle(word));
+            const std::string& before = tokens.empty() ? std::string() : tokens.back().text;
+            const bool member = before == "." || before == "->" || before == "::";
+            const std::size_t after = text.find_first_not_of(" \t\r\n", next);
+            const bool called = after != std::string_view::npos && text[after] == '(';
+            const bool kept = keywords().count(word) || ((called || member) && libraryNames().count(word)) ||
+                              (before == "." && isSwizzle(word));
             tokens.push_back({kept ? std::string(word) : std::string("id"), line});
         } else if (digit(c) || (c == '.' && i + 1 < text.size() && digit(text[i + 1]))) {
             next = i + numberLength(text, i);

@@ -42,12 +42,19 @@ const std::vector<SimilarityStage> kStages = {{"sampling", {"sampling.glsl"}},
                                               {"texslice3d", {"proxy_geometry.cpp"}},
                                               {"mip", {"mip.glsl"}}};
 
+const fs::path kScratch = fs::temp_directory_path() / ("voxlab_similarity_" + std::to_string(::getpid()));
+
 fs::path scratch(const std::string& name) {
-    const fs::path p = fs::temp_directory_path() / ("voxlab_similarity_" + std::to_string(::getpid())) / name;
+    const fs::path p = kScratch / name;
     fs::remove_all(p);
     fs::create_directories(p);
     return p;
 }
+
+struct RemoveScratch : ::testing::Environment {
+    void TearDown() override { fs::remove_all(kScratch); }
+};
+const auto* const kRemoveScratch = ::testing::AddGlobalTestEnvironment(new RemoveScratch);
 
 void writeText(const fs::path& path, const std::string& text) {
     fs::create_directories(path.parent_path());

@@ -13,6 +13,7 @@
 #include "voxlab/error.h"
 #include "voxlab/grader.h"
 #include "voxlab/html_report.h"
+#include "voxlab/similarity.h"
 
 namespace voxlab::cli {
 
@@ -107,18 +108,29 @@ void writeGradebook(const std::vector<json>& reports, const std::string& path) {
         char total[64];
         std::snprintf(total, sizeof total, "%.2f,%.2f", r.value("score", 0.0), r.value("max_score", 0.0));
         csv << csvField(r.value("name", "?")) << "," << total;
-        std::string problems;
         for (const json& s : r["stages"]) {
             char score[32];
             std::snprintf(score, sizeof score, "%.2f", s.value("score", 0.0));
             csv << "," << score;
-            const std::string status = s.value("status", "");
-            if (status != "passed" && status != "example" && status != "failed")
-                problems += (problems.empty() ? "" : "; ") + s.value("stage", "?") + ": " + status;
         }
-        csv << "," << csvField(problems) << "\n";
+        csv << "," << csvField(problemsSummary(r)) << "\n";  // worst first (html_report.h)
     }
     writeFileAtomically(path, csv.str());
+}
+
+// Similar code across the class, as evidence for a person (similarity.h):
+// OUT/similarity.json and .html. Returns the line to print.
+std::string reportSimilarity(const std::vector<Submission>& submissions, const GraderOptions& options,
+                             double threshold, const fs::path& out) {
+    std::vector<SimilaritySubmission> code;
+    for (const Submission& s : submissions) code.push_back({s.name, s.folder});
+    SimilarityOptions o;
+    o.threshold = threshold;
+    const SimilarityReport r = findSimilarCode(code, similarityStages(options.referenceRoot, options.stages),
+                                               projectRoot() + "/assignments", o);
+    writeSimilarityReport(r, out.string());
+    return std::to_string(r.pairs.size()) + " pair(s) of submissions with similar code, evidence for you to judge: " +
+           (out / "similarity.html").string();
 }
 
 }  // namespace
@@ -130,7 +142,8 @@ int gradeCommand(int argc, char** argv) {
         {"reference", "DIR", "the reference solution (default: the project's reference/)"},
         {"render-expected", "DIR", "only render the reference's expected outputs into DIR (for a student release)"},
         {"submitted-at", "TIME", "when the submission was made (ISO 8601), for the assignment's late policy"},
-        {"due", "TIME", "the due date (ISO 8601), instead of the assignment file's"}};
+        {"due", "TIME", "the due date (ISO 8601), instead of the assignment file's"},
+        {"similarity-threshold", "X", "--batch: list pairs whose stage code is this alike (0..1, default 0.5) or off"}};
     for (const OptionSpec& s : limitOptions()) specs.push_back(s);
     const Args args(specs, argc, argv, 2, "grade");
     if (args.get("render-expected") && !args.has("submission") && !args.has("batch")) {
@@ -150,7 +163,8 @@ int gradeCommand(int argc, char** argv) {
                      "FLIP), and function checks run on random inputs. Each stage runs in its own process with a\n"
                      "time limit and a memory cap. Writes REPORT_DIR/index.html (open it in a browser),\n"
                      "report.json and results.json (Gradescope). --batch grades each folder of DIR into\n"
-                     "OUT/<name>/ and writes OUT/gradebook.csv and OUT/index.html. An upload may be the\n"
+                     "OUT/<name>/ and writes OUT/gradebook.csv and OUT/index.html, and OUT/similarity.html: pairs\n"
+                     "whose stage code is alike, as evidence for you to judge. An upload may be the\n"
                      "assignments/ folder, its contents, a folder with it nested inside, or loose stage files.\n"
                      "--assignment FILE (courses/*.json) chooses the stages, their points, each test's\n"
                      "visibility in results.json and the late policy (with --submitted-at).\n\n"
@@ -163,6 +177,8 @@ int gradeCommand(int argc, char** argv) {
     options.expectedDir = (out / ".expected").string();
     const std::optional<Assignment> assignment = assignmentFrom(args, options);
     const std::optional<double> submittedAt = timeOption(args, "submitted-at"), due = timeOption(args, "due");
+    std::optional<double> similarity = SimilarityOptions().threshold;
+    if (args.get("similarity-threshold")) similarity = parseSimilarityThreshold(*args.get("similarity-threshold"));
     if (assignment)
         options.adjustReport = [&](json& report) { applyAssignment(report, *assignment, submittedAt, due); };
 
@@ -199,6 +215,7 @@ int gradeCommand(int argc, char** argv) {
                         r.value("max_score", 0.0));
         std::printf("%zu submissions graded in %.1f s; gradebook: %s\n", reports.size(), seconds,
                     (out / "gradebook.csv").string().c_str());
+        if (similarity) std::cout << reportSimilarity(submissions, options, *similarity, out) << "\n";
     }
     return 0;
 }

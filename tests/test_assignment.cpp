@@ -135,6 +135,32 @@ TEST(GradescopeResults, ScoresOfAStageAddUpExactly) {
     EXPECT_EQ(r["tests"][1]["score"], r["tests"][1]["max_score"]);
 }
 
+// Six items of 4/3 points (a stage of 8): the maxima round to 1.34, 1.34,
+// 1.33, 1.33, 1.33, 1.33. With the first three at full marks the stage
+// scored 4.00, but their rounded maxima add up to 4.01: the tests used to
+// say 4.01.
+TEST(GradescopeResults, FullMarksItemsNeverAddUpToMoreThanTheStage) {
+    const double item = 4.0 / 3.0;
+    json scenes = json::array();
+    for (int i = 0; i < 6; ++i)
+        scenes.push_back({{"name", std::string(1, char('a' + i))}, {"status", i < 3 ? "passed" : "failed"},
+                          {"max_score", item}, {"score", i < 3 ? item : 0.0}});
+    const json report = {{"score", 3.0 * item}, {"max_score", 8.0},
+                         {"stages", {{{"stage", "s"}, {"title", "S"}, {"max_score", 8.0}, {"score", 3.0 * item},
+                                      {"scenes", scenes}, {"checks", json::array()}}}}};
+    const json r = gradescopeResults(report);
+    long long max = 0, score = 0;
+    for (const json& t : r["tests"]) {
+        max += cents(t["max_score"]);
+        score += cents(t["score"]);
+        EXPECT_LE(cents(t["score"]), cents(t["max_score"])) << t.dump();
+        if (t["status"] == "passed") EXPECT_GE(cents(t["score"]), cents(t["max_score"]) - 1) << t.dump();
+    }
+    EXPECT_EQ(max, 800);
+    EXPECT_EQ(score, 400);
+    EXPECT_EQ(cents(r["score"]), 400);
+}
+
 TEST(SubmissionLayout, FindsNestedFoldersAndPlacesLooseFiles) {
     const fs::path up = fs::temp_directory_path() / "voxlab_layout_test";
     fs::remove_all(up);

@@ -243,8 +243,23 @@ std::vector<Test> stageTests(const json& stage) {
             partialIndex.push_back(i);
             caps.push_back(maxCents[i]);
         }
-    const std::vector<long long> rest =
-        apportion(partial, std::max(0LL, cents(stage.value("score", 0.0)) - full), &caps);
+    const long long stageCents = cents(stage.value("score", 0.0));
+    if (full > stageCents) {
+        // The maxima's rounding gave the full-mark items more than the
+        // stage scored (three items of 4/3 out of 10: 1.34 + 1.34 + 1.33 >
+        // 4.00): they share the stage's score instead, a cent below their
+        // maximum at worst.
+        std::vector<double> fullScores;
+        std::vector<long long> fullCaps;
+        std::vector<std::size_t> fullIndex;
+        for (std::size_t i = 0; i < tests.size(); ++i)
+            if (scores[i] >= maxima[i] - 1e-9)
+                fullScores.push_back(scores[i]), fullCaps.push_back(maxCents[i]), fullIndex.push_back(i);
+        const std::vector<long long> shared = apportion(fullScores, stageCents, &fullCaps);
+        full = 0;
+        for (std::size_t k = 0; k < shared.size(); ++k) scoreCents[fullIndex[k]] = shared[k], full += shared[k];
+    }
+    const std::vector<long long> rest = apportion(partial, std::max(0LL, stageCents - full), &caps);
     for (std::size_t k = 0; k < rest.size(); ++k) scoreCents[partialIndex[k]] = rest[k];
     for (std::size_t i = 0; i < tests.size(); ++i) {
         tests[i].entry["max_score"] = double(maxCents[i]) / 100.0;

@@ -303,7 +303,37 @@ TEST(GradingManifest, BadManifestsGiveOneLineErrors) {
     expectError(R"({"title": "x", "order": 1, "files": [], "functions": ["mip_ray"],
                     "hints": [{"failed": ["nosuchscene"], "hints": ["Looks like"]}]})",
                 "'nosuchscene' is not a scene or check of this stage");
+    // A misspelt key at any level is an error, not a setting quietly ignored.
+    expectError(R"({"title": "x", "order": 1, "tolerances": {"min_ssim": 0.5}})", "unknown key 'tolerances'");
+    expectError(R"({"title": "x", "order": 1, "scenes": [{"name": "a", "scene": "s.json", "wieght": 2}]})",
+                "unknown key 'wieght'");
+    expectError(R"({"title": "x", "order": 1, "checks": [{"name": "c", "hidden": true}]})", "unknown key 'hidden'");
+    expectError(R"({"title": "x", "order": 1, "points": 0, "hints": [{"failed": [], "hint": "x"}]})", "unknown key 'hint'");
+    expectError(R"({"title": "x", "order": 1, "tolerance": {"min_ssim": 2}})", "tolerance: tolerances out of range");
     EXPECT_THROW(loadStageManifest(root.string(), "nosuchstage"), Error);
+}
+
+// Tolerances in three layers: the defaults, the manifest's stage-wide
+// "tolerance", a scene's own keys; each sets only the keys it names.
+TEST(GradingManifest, StageWideToleranceUnderSceneTolerance) {
+    const fs::path root = scratch("manifest_tolerance");
+    fs::create_directories(root / "mip");
+    std::ofstream(root / "mip" / "grading.json") << R"({"title": "x", "order": 1, "points": 0,
+        "tolerance": {"min_ssim": 0.9, "max_flip": 0.05},
+        "scenes": [{"name": "a", "scene": "a.json"}, {"name": "b", "scene": "b.json", "tolerance": {"max_flip": 0.1}}]})";
+    const StageManifest m = loadStageManifest(root.string(), "mip");
+    const Tolerance defaults;
+    ASSERT_EQ(m.scenes.size(), 2u);
+    EXPECT_EQ(m.scenes[0].tolerance.minSsim, 0.9);
+    EXPECT_EQ(m.scenes[0].tolerance.maxFlip, 0.05);
+    EXPECT_EQ(m.scenes[0].tolerance.maxDifference, defaults.maxDifference);
+    EXPECT_EQ(m.scenes[1].tolerance.minSsim, 0.9) << "the scene's keys replaced the stage's other keys";
+    EXPECT_EQ(m.scenes[1].tolerance.maxFlip, 0.1);
+    // --tolerance over a scene's: only its keys.
+    const Tolerance t = overTolerance(m.scenes[1].tolerance, json{{"max_difference", 8}}, "--tolerance");
+    EXPECT_EQ(t.maxDifference, 8.0);
+    EXPECT_EQ(t.maxFlip, 0.1);
+    EXPECT_THROW(overTolerance(t, json{{"min_sim", 0.5}}, "--tolerance"), Error);
 }
 
 // The manifest's functions must be defined in the stage's files, and its

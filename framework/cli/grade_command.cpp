@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "voxlab/assignment.h"
 #include "voxlab/atomic_file.h"
+#include "voxlab/grading.h"
 #include "voxlab/error.h"
 #include "voxlab/grader.h"
 #include "voxlab/html_report.h"
@@ -29,6 +30,7 @@ std::vector<OptionSpec> limitOptions() {
             {"jobs", "N", "stages graded at once, each in its own process (default: the CPU count)"},
             {"time-limit", "SECONDS", "per stage and submission (default 60)"},
             {"memory-limit", "MIB", "address space per stage process (default 4096)"},
+            {"tolerance", "KEY=VALUE", "an image tolerance for every scene, e.g. min_ssim=0.95 (repeatable; keys: docs/instructors.md)"},
             {"quiet", "", "no progress bar"},
             {"help", "", "show this help"}};
 }
@@ -46,6 +48,12 @@ GraderOptions limitsFrom(const Args& args) {
         if (!(mib >= 256 && mib <= 1 << 20)) throw Error("option --memory-limit: must be in 256..1048576 MiB");
         o.memoryLimit = std::size_t(mib) << 20;
     }
+    for (const std::string& kv : args.getAll("tolerance")) {
+        const std::size_t eq = kv.find('=');
+        if (eq == std::string::npos || eq == 0) throw Error("option --tolerance: expected KEY=VALUE, got '" + kv + "'");
+        o.tolerance[kv.substr(0, eq)] = parseNumber(kv.substr(eq + 1), "--tolerance " + kv.substr(0, eq));
+    }
+    overTolerance({}, o.tolerance, "option --tolerance");  // a wrong key or value stops here, before any grading
     o.progress = !args.has("quiet");
     return o;
 }

@@ -38,6 +38,7 @@ struct GraderOptions {
     bool hiddenScenes = true;     // grade scenes marked "hidden" (false: `voxlab check`, a release's goldens)
     std::vector<std::string> stages;  // empty: every stage with a manifest, in teaching order
     std::map<std::string, double> points;  // stage -> points instead of its manifest's (an assignment file)
+    nlohmann::json tolerance = nlohmann::json::object();  // set over every scene's (--tolerance KEY=VALUE)
     double timeLimit = 60.0;          // seconds per stage
     std::size_t memoryLimit = std::size_t(4) << 30;
     int jobs = 1;                 // stages graded at once (each a process)

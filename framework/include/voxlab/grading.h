@@ -166,6 +166,12 @@ double creditForFailedCases(double failedFraction);
 
 nlohmann::json toJson(const ImageMetrics& m);
 nlohmann::json toJson(const Tolerance& t);
+// `base` with the keys of `keys` (an object of toJson's keys, plus "why")
+// set over it; throws voxlab::Error "WHERE: unknown key 'x'" or "WHERE:
+// tolerances out of range". A manifest's stage-wide "tolerance" is laid over
+// the defaults, a scene's over the stage's, and `voxlab grade --tolerance`
+// over every scene's.
+Tolerance overTolerance(const Tolerance& base, const nlohmann::json& keys, const std::string& where);
 
 // The functions of a stage's files that still hold the starter code's stub
 // (a `not_implemented();` call in GLSL, `throw NotImplemented(` in C++), by

@@ -100,6 +100,7 @@ std::vector<std::string> chosenStages(const GraderOptions& options) {
 StageManifest gradedManifest(const std::string& stage, const GraderOptions& options) {
     StageManifest m = loadStageManifest(options.referenceRoot, stage);
     if (const auto it = options.points.find(stage); it != options.points.end()) m.points = it->second;
+    for (GradedScene& scene : m.scenes) scene.tolerance = overTolerance(scene.tolerance, options.tolerance, "--tolerance");
     if (!options.hiddenScenes)
         m.scenes.erase(std::remove_if(m.scenes.begin(), m.scenes.end(), [](const GradedScene& s) { return s.hidden; }),
                        m.scenes.end());

@@ -37,13 +37,25 @@ std::string text(const json& j, const std::string& key, const std::string& where
     return j.at(key).get<std::string>();
 }
 
-Tolerance readTolerance(const json& j, const std::string& where) {
-    Tolerance t;
+// Every key of an object is one of `known`: a misspelt key would otherwise
+// be ignored in silence (a "tolerances" that loosens nothing).
+void onlyKeys(const json& j, const std::string& where, std::initializer_list<const char*> known) {
+    for (const auto& item : j.items()) {
+        bool ok = false;
+        for (const char* k : known) ok = ok || item.key() == k;
+        if (ok) continue;
+        std::string list;
+        for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+        throw Error(where + ": unknown key '" + item.key() + "' (known: " + list + ")");
+    }
+}
+
+}  // namespace
+
+Tolerance overTolerance(const Tolerance& base, const json& j, const std::string& where) {
     if (!j.is_object()) throw Error(where + ": expected an object");
-    for (const auto& [key, value] : j.items())
-        if (key != "max_difference" && key != "max_fraction" && key != "min_ssim" && key != "max_flip" &&
-            key != "cluster_difference" && key != "max_cluster" && key != "why")
-            throw Error(where + ": unknown key '" + key + "'");
+    onlyKeys(j, where, {"max_difference", "max_fraction", "min_ssim", "max_flip", "cluster_difference", "max_cluster", "why"});
+    Tolerance t = base;
     t.maxDifference = number(j, "max_difference", t.maxDifference, where);
     t.maxFraction = number(j, "max_fraction", t.maxFraction, where);
     t.minSsim = number(j, "min_ssim", t.minSsim, where);
@@ -55,8 +67,6 @@ Tolerance readTolerance(const json& j, const std::string& where) {
         throw Error(where + ": tolerances out of range");
     return t;
 }
-
-}  // namespace
 
 namespace {
 
@@ -110,14 +120,17 @@ void forEachObject(const json& j, const char* key, const std::string& path, Each
 
 std::vector<GradedScene> readScenes(const json& j, const std::filesystem::path& folder, const std::string& path) {
     std::vector<GradedScene> scenes;
+    const Tolerance stageWide = j.contains("tolerance") ? overTolerance({}, j.at("tolerance"), path + ": tolerance") : Tolerance{};
     forEachObject(j, "scenes", path, [&](const json& s, const std::string& where) {
+        onlyKeys(s, where, {"name", "scene", "weight", "hidden", "tolerance", "functions", "about"});
         GradedScene g;
+        g.tolerance = stageWide;
         g.name = text(s, "name", where, true);
         g.scenePath = (folder / text(s, "scene", where, true)).lexically_normal().string();
         g.weight = number(s, "weight", 1.0, where);
         if (s.contains("hidden") && !s.at("hidden").is_boolean()) throw Error(where + ": hidden: expected true or false");
         g.hidden = s.value("hidden", false);
-        if (s.contains("tolerance")) g.tolerance = readTolerance(s.at("tolerance"), where + ".tolerance");
+        if (s.contains("tolerance")) g.tolerance = overTolerance(stageWide, s.at("tolerance"), where + ".tolerance");
         g.functions = stringList(s, "functions", where);
         g.about = text(s, "about", where, false);
         if (g.name.empty() || g.name.find_first_of("/\\. ") != std::string::npos)
@@ -130,6 +143,7 @@ std::vector<GradedScene> readScenes(const json& j, const std::filesystem::path& 
 std::vector<GradedCheck> readChecks(const json& j, const std::string& path) {
     std::vector<GradedCheck> checks;
     forEachObject(j, "checks", path, [&](const json& c, const std::string& where) {
+        onlyKeys(c, where, {"name", "weight", "functions"});
         checks.push_back({text(c, "name", where, true), number(c, "weight", 1.0, where), stringList(c, "functions", where)});
     });
     return checks;
@@ -138,6 +152,7 @@ std::vector<GradedCheck> readChecks(const json& j, const std::string& path) {
 std::vector<StageHint> readHints(const json& j, const StageManifest& m, const std::string& path) {
     std::vector<StageHint> hints;
     forEachObject(j, "hints", path, [&](const json& h, const std::string& where) {
+        onlyKeys(h, where, {"failed", "hints"});
         StageHint hint{stringList(h, "failed", where), stringList(h, "hints", where)};
         for (const std::string& name : hint.failed) {
             bool known = false;
@@ -176,6 +191,8 @@ StageManifest loadStageManifest(const std::string& root, const std::string& stag
     if (!std::filesystem::exists(path)) throw Error(path + ": no such file (stage '" + stage + "' has no manifest)");
     const json j = json_text::readJsonFile(path);
     if (!j.is_object()) throw Error(path + ": expected an object");
+    onlyKeys(j, path, {"title", "order", "about", "points", "tolerance", "scenes", "checks", "files", "cpp_functions",
+                       "functions", "requires", "hints"});
     StageManifest m;
     m.stage = stage;
     m.title = text(j, "title", path, true);

@@ -71,6 +71,24 @@ TEST_F(Cli, RenderWritesTheMipAndPrintsItsPath) {
         }
 }
 
+// The starter code's first picture is the checkerboard: render says which
+// functions it stands for (the stage folders the render used), in one line;
+// the reference, with nothing missing, says nothing on stderr.
+TEST_F(Cli, RenderOfStarterCodeNamesTheMissingFunctions) {
+    const std::string common = "render --dataset phantom:sphere:16 --renderer mip --size 16x16 --out " + path("a.png");
+    const CommandResult starter =
+        runVoxlab(common + " --implementation " + std::string(VOXLAB_SOURCE_DIR) + "/assignments");
+    ASSERT_EQ(starter.exitCode, 0) << starter.err;
+    EXPECT_EQ(lineCount(starter.err), 1) << starter.err;
+    EXPECT_NE(starter.err.find("mip/: mip_ray()"), std::string::npos) << starter.err;
+    EXPECT_NE(starter.err.find("sampling/: sample_nearest(), sample_trilinear()"), std::string::npos) << starter.err;
+    EXPECT_EQ(starter.err.find("composite"), std::string::npos) << "a stage the render did not use: " << starter.err;
+    const CommandResult reference =
+        runVoxlab(common + " --implementation " + std::string(VOXLAB_SOURCE_DIR) + "/reference");
+    ASSERT_EQ(reference.exitCode, 0) << reference.err;
+    EXPECT_EQ(reference.err, "");
+}
+
 TEST_F(Cli, FlagsOverrideTheSceneFile) {
     const std::string scene = write("scene.json", R"({"dataset": "phantom:sphere:16", "renderer": "slicer",
         "size": [40, 30], "sampling": {"step": 0.25}, "parameters": {"offset": 2}})");

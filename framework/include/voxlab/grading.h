@@ -178,4 +178,11 @@ Tolerance overTolerance(const Tolerance& base, const nlohmann::json& keys, const
 // name, in file order.
 std::vector<std::string> unimplementedFunctions(const std::string& stageFolder);
 
+class RenderEngine;
+// After a render: one line naming the stubs (by stage folder) in the files
+// that render's program came from, the functions the checkerboard stands
+// for, and pointing to `voxlab check`; empty when there are none. The
+// viewer shows it over the image, `voxlab render` prints it.
+std::string missingFunctionsNotice(const RenderEngine& engine);
+
 }  // namespace voxlab

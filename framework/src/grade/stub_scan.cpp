@@ -10,6 +10,7 @@
 #include <regex>
 
 #include "voxlab/grading.h"
+#include "voxlab/render_engine.h"
 
 namespace voxlab {
 
@@ -53,6 +54,39 @@ std::vector<std::string> unimplementedFunctions(const std::string& stageFolder) 
         }
     }
     return names;
+}
+
+namespace {
+
+// The stage folders (root/<stage>/) of the files under `root`, in order.
+std::vector<std::filesystem::path> stageFolders(const std::vector<std::string>& files,
+                                                const std::filesystem::path& root) {
+    namespace fs = std::filesystem;
+    std::vector<fs::path> folders;
+    for (const std::string& f : files) {
+        const fs::path rel = fs::absolute(f).lexically_normal().lexically_relative(root);
+        if (rel.empty() || *rel.begin() == "..") continue;
+        const fs::path folder = root / *rel.begin();
+        if (fs::is_directory(folder) && std::find(folders.begin(), folders.end(), folder) == folders.end())
+            folders.push_back(folder);
+    }
+    return folders;
+}
+
+}  // namespace
+
+std::string missingFunctionsNotice(const RenderEngine& engine) {
+    const std::filesystem::path root = std::filesystem::absolute(engine.implementationRoot()).lexically_normal();
+    std::string missing;
+    for (const std::filesystem::path& folder : stageFolders(engine.lastRenderSources(), root)) {
+        const std::vector<std::string> names = unimplementedFunctions(folder.string());
+        if (names.empty()) continue;
+        std::string list;
+        for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n + "()";
+        missing += (missing.empty() ? "" : "; ") + folder.filename().string() + "/: " + list;
+    }
+    return missing.empty() ? ""
+                           : "checkerboard = not yet implemented: " + missing + ". Run `voxlab check` for every stage.";
 }
 
 }  // namespace voxlab

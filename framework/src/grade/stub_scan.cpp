@@ -86,7 +86,8 @@ std::string missingFunctionsNotice(const RenderEngine& engine) {
         missing += (missing.empty() ? "" : "; ") + folder.filename().string() + "/: " + list;
     }
     return missing.empty() ? ""
-                           : "checkerboard = not yet implemented: " + missing + ". Run `voxlab check` for every stage.";
+                           : "not yet implemented: " + missing +
+                                 " (the magenta checkerboard marks where a ray reaches one). Run `voxlab check` for every stage.";
 }
 
 }  // namespace voxlab

@@ -240,9 +240,11 @@ void drawOverlays(State& s) {
     profileMarker(s, fg, size, scale);
     deckCaption(s, fg, size, scale);
     statusLine(s, fg, size, scale);
-    if (!s.stubNotice.empty())  // the checkerboard, explained in one line
-        plateText(fg, ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(size.x * 0.5f, 12 * scale),
-                  IM_COL32(255, 200, 90, 255), s.stubNotice, size.x * 0.6f);
+    if (!s.stubNotice.empty()) {  // the checkerboard, explained: centred in the space right of the controls
+        const float left = s.showPanel ? s.panelRight + 10 * scale : 0.0f;
+        plateText(fg, ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(0.5f * (left + size.x), 12 * scale),
+                  IM_COL32(255, 200, 90, 255), s.stubNotice, std::max(200.0f, 0.9f * (size.x - left) - 24 * scale));
+    }
     errorBox(s, size, scale);
     if (!s.toast.empty() && Clock::now() < s.toastUntil) {
         const ImVec2 tt = ImGui::CalcTextSize(s.toast.c_str());

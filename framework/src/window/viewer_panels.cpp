@@ -227,13 +227,19 @@ void transferFunctionPanel(State& s) {
     const Volume& volume = *s.volume;
     const float scale = s.contentScale;
     const ImVec2 display = ImGui::GetIO().DisplaySize;
-    // Beside the control panel, at the bottom: the two never overlap.
-    const float x = (s.showPanel ? s.panelRight : 0.0f) + 10 * scale;
-    const ImGuiCond cond = s.relayout ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
-    ImGui::SetNextWindowPos(ImVec2(x, display.y - 330 * scale), cond);
-    ImGui::SetNextWindowSize(ImVec2(std::min(460 * scale, std::max(200.0f, display.x - x - 10 * scale)), 320 * scale), cond);
-    if (!ImGui::Begin("transfer function", &s.showTransferFunction)) return ImGui::End();
     const Renderer* renderer = rendererRegistry().find(s.scene.renderer);
+    // Beside the control panel, at the bottom: the two never overlap. With
+    // no function in use the panel is only its checkbox and files, and
+    // shrinks to them; it takes the editor's size again when one is used.
+    const bool compact = !s.scene.transferFunction && !(renderer && renderer->needsTransferFunction2D());
+    const float x = (s.showPanel ? s.panelRight : 0.0f) + 10 * scale;
+    const ImGuiCond cond = s.relayout || compact != s.tfPanelCompact ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+    s.tfPanelCompact = compact;
+    const float width = std::min(460 * scale, std::max(200.0f, display.x - x - 10 * scale));
+    ImGui::SetNextWindowPos(ImVec2(x, display.y - (compact ? 150 : 330) * scale), cond);
+    ImGui::SetNextWindowSize(ImVec2(width, compact ? 0.0f : 320 * scale), cond);
+    if (!ImGui::Begin("transfer function", &s.showTransferFunction, compact ? ImGuiWindowFlags_AlwaysAutoResize : 0))
+        return ImGui::End();
     if (renderer && renderer->needsTransferFunction2D()) {  // asked of the renderer, not its name
         if (!s.histogram2D) s.histogram2D = histogram2D(volume);
         if (!s.scene.transferFunction2D) s.scene.transferFunction2D = startingTransferFunction2D(s);

@@ -111,6 +111,7 @@ struct State {
 
     // Panels.
     float panelRight = 0.0f;        // the control panel's right edge (the transfer function goes beside it)
+    bool tfPanelCompact = false;    // the transfer-function panel shows no editor (none in use)
     bool showPanel = true, showTransferFunction = true, showSlices = false, showProfile = false, showHelp = false;
     int selectedPoint = -1, selectedWidget = -1;
     TransferFunctionHistory history;

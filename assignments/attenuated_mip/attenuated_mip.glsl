@@ -17,12 +17,26 @@
 // lo, hi = u_value_range. D_m counts the samples *before* m, in units of
 // the smallest spacing (u_step_units), so the image does not change with
 // the step. With u_attenuation = 0 this is the MIP.
+//
+// Depth cue (napari-style): each sample is also dimmed by how deep it lies,
+// its distance s_m from where the ray enters the region it samples
+// (t_entry), also in units of the smallest spacing:
+//
+//     s_m = (m + 1/2) * u_step_units                sample m sits at
+//                                                   t_entry + (m + 1/2) u_step
+//     I   = max over m of  lo + (f_m - lo) * exp(-u_attenuation * D_m)
+//                                           * exp(-u_depth_cue * s_m)
+//
+// u_depth_cue is per unit length (smallest spacing): a sample 1/u_depth_cue
+// spacings deep keeps 1/e of its height above lo. With u_depth_cue = 0
+// there is no depth cue; both dimmings apply together.
 #ifndef VOXLAB_STAGE_ATTENUATED_MIP_GLSL
 #define VOXLAB_STAGE_ATTENUATED_MIP_GLSL
 
 #include "voxlab/ray.glsl"
 
 uniform float u_attenuation;  // per unit length of normalised intensity
+uniform float u_depth_cue;    // per unit length (smallest spacing) of depth
 
 // Returns the largest attenuated sample value along the ray (data units).
 float attenuated_mip_ray(Ray ray) {

@@ -17,10 +17,15 @@ const RendererRegistry& rendererRegistry() {
                                 ProfileModel::Mean);
         r.add<FirstHitRenderer>();
         r.add<SlabMipRenderer>();
-        r.add<RayValueRenderer>("attenuated_mip", "attenuated MIP: each sample dimmed by the intensity in front of it",
+        r.add<RayValueRenderer>("attenuated_mip",
+                                "attenuated MIP: each sample dimmed by the intensity in front of it and, with a "
+                                "depth cue, by its depth",
                                 ProfileModel::None,
                                 std::vector<ParameterSpec>{{"attenuation", ParameterType::Float, 0.0, 10.0, 0.05,
-                                                            "dimming per unit length of normalised intensity crossed"}});
+                                                            "dimming per unit length of normalised intensity crossed"},
+                                                           {"depth_cue", ParameterType::Float, 0.0, 1.0, 0.0,
+                                                            "depth cue: dimming per unit length (smallest spacing) "
+                                                            "behind where the ray enters; 0 turns it off"}});
         r.add<CompositeRenderer>();
         r.add<IsoRenderer>();
         r.add<Tf2dRenderer>();

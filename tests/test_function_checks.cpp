@@ -69,7 +69,8 @@ TEST_F(FunctionChecks, ListsOneCheckPerStageWithADescription) {
         {"tf2d_classify_random", "tf2d"},    {"slice_axis_random", "texslice2d"},
         {"plane_box_random", "texslice3d"},  {"first_hit_random_rays", "firsthit"},
         {"iso_hit_random_rays", "iso"},      {"mip_random_rays", "mip"},
-        {"minip_random_rays", "minip"},      {"average_random_rays", "average"}};
+        {"minip_random_rays", "minip"},      {"average_random_rays", "average"},
+        {"gradient_opacity_random", "gradient_opacity"}};
     std::map<std::string, std::string> listed;
     for (const FunctionCheckInfo& info : functionChecks()) {
         listed[info.name] = info.stage;
@@ -110,6 +111,26 @@ TEST_F(FunctionChecks, ReferencePassesAgainstItselfAndIsDeterministic) {
 
 // ---------------------------------------------------------------------------
 // Independent CPU oracles, from the JSON inputs
+
+// The gradient-opacity ramp as its handout defines it, in double: 0 at or
+// below low, 1 at or above high, linear between, a step at high when
+// high <= low. The GPU divides in float: 1e-6 relative to a weight <= 1.
+TEST_F(FunctionChecks, GradientOpacityMatchesTheRamp) {
+    int steps = 0, onBounds = 0, inside = 0;
+    for (const json* c : casesOf(reference("gradient_opacity_random"), "gradient_opacity_weight")) {
+        const json& in = c->at("input");
+        const double g = in["gradient_magnitude"], low = in["low"], high = in["high"];
+        const double expected = high <= low ? (g < high ? 0.0 : 1.0) : std::clamp((g - low) / (high - low), 0.0, 1.0);
+        ASSERT_NEAR(c->at("output").get<double>(), expected, 1e-6) << in.dump();
+        steps += high <= low;
+        onBounds += g == low || g == high;
+        inside += high > low && g > low && g < high;
+    }
+    // The inputs reach each case of the definition.
+    EXPECT_GE(steps, 40);
+    EXPECT_GE(onBounds, 40);
+    EXPECT_GE(inside, 20);
+}
 
 // Phong and Blinn-Phong as the shading stage's comment states them, in
 // double. The GPU works in float: with exponents up to 128 the highlight's

@@ -20,6 +20,9 @@ int listCommand(int argc, char** argv) {
             if (p.dataUnits)
                 std::printf("  %-22s %s in data units, default %g of the value range: %s\n", p.name.c_str(),
                             parameterTypeName(p.type), p.defaultValue, p.description.c_str());
+            else if (p.dataSpan)
+                std::printf("  %-22s %s in data units, default %g of the value range's width: %s\n", p.name.c_str(),
+                            parameterTypeName(p.type), p.defaultValue, p.description.c_str());
             else
                 std::printf("  %-22s %s in [%g, %g], default %g: %s\n", p.name.c_str(), parameterTypeName(p.type),
                             p.minValue, p.maxValue, p.defaultValue, p.description.c_str());

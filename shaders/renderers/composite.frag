@@ -1,13 +1,15 @@
 #version 330 core
 // Renderer "composite": direct volume rendering with the 1D transfer
 // function. The stages are the compositing loops and the classification in
-// composite/composite.glsl; shading is the gradient and shading stages.
+// composite/composite.glsl; shading is the gradient and shading stages; with
+// `gradient_opacity` the opacity is weighted by the gradient_opacity stage.
 // The loops get the ray in runs between empty bricks (voxlab/runs.glsl).
 #include "voxlab/ray.glsl"
 #include "voxlab/classify.glsl"
 #include "voxlab/output.glsl"
 #include "voxlab/lighting.glsl"
 #include "composite/composite.glsl"
+#include "gradient_opacity/gradient_opacity.glsl"
 #define RUN_FRONT_TO_BACK composite_front_to_back
 #define RUN_BACK_TO_FRONT composite_back_to_front
 #include "voxlab/runs.glsl"
@@ -15,11 +17,16 @@
 uniform int u_preclassify;
 uniform int u_back_to_front;
 uniform int u_jitter;
+uniform int u_gradient_opacity;
+uniform float u_gradient_low;
+uniform float u_gradient_high;
 
 out vec4 frag_color;
 
 vec4 sample_colour(vec3 p, Ray ray) {
     vec4 c = u_preclassify != 0 ? classify_pre(p) : classify_post(p);
+    if (u_gradient_opacity != 0 && c.a > 0.0)
+        c.a *= gradient_opacity_weight(length(gradient_at(p)), u_gradient_low, u_gradient_high);
     if (c.a > 0.0) c.rgb = shade_sample(c.rgb, p, ray);
     return c;
 }

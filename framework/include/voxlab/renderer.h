@@ -42,7 +42,10 @@ enum class ProfileModel { None, Maximum, Minimum, Mean, FirstHit, Isosurface, Co
 // range: a CT scan and an 8-bit volume differ by orders of magnitude. Such a
 // parameter sets `dataUnits`; its min, max and default are then fractions of
 // the volume's value range (0 = the smallest value, 1 = the largest), and
-// parametersFor() turns them into data units for one volume.
+// parametersFor() turns them into data units for one volume. A parameter
+// that is a difference of data values (a gradient magnitude, in data units
+// per unit length) sets `dataSpan` instead: its bounds and default are
+// fractions of the range's width (0 = none, 1 = the whole range).
 struct ParameterSpec {
     std::string name;
     ParameterType type = ParameterType::Float;
@@ -51,6 +54,8 @@ struct ParameterSpec {
     double defaultValue = 0.0;
     std::string description;
     bool dataUnits = false;
+    bool dataSpan = false;
+    bool scaledByData() const { return dataUnits || dataSpan; }
 };
 
 const char* parameterTypeName(ParameterType t);

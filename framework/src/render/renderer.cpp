@@ -32,8 +32,9 @@ void Renderer::setUniforms(const ShaderProgram& program, const ParameterValues& 
 std::vector<ParameterSpec> Renderer::parametersFor(glm::dvec2 dataRange) const {
     std::vector<ParameterSpec> specs = parameters();
     for (ParameterSpec& p : specs) {
-        if (!p.dataUnits) continue;
-        const auto toData = [&](double f) { return dataRange.x + f * (dataRange.y - dataRange.x); };
+        if (!p.scaledByData()) continue;
+        const double origin = p.dataUnits ? dataRange.x : 0.0;  // a value, or a difference of values
+        const auto toData = [&](double f) { return origin + f * (dataRange.y - dataRange.x); };
         p.minValue = toData(p.minValue);
         p.maxValue = toData(p.maxValue);
         p.defaultValue = toData(p.defaultValue);
@@ -75,7 +76,7 @@ ParameterValues Renderer::resolveParameters(const ParameterValues& given,
             throw Error(where + " is a bool (0/1, true/false)");
         if (spec->type == ParameterType::Int && value != std::floor(value))
             throw Error(where + " must be an integer");
-        if (spec->dataUnits && !dataRange) {
+        if (spec->scaledByData() && !dataRange) {
             out[name] = value;
             continue;
         }

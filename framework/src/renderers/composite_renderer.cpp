@@ -14,6 +14,18 @@ std::vector<ParameterSpec> CompositeRenderer::parameters() const {
     std::vector<ParameterSpec> p = compositingParameters();
     p.push_back({"preclassify", ParameterType::Bool, 0, 1, 0,
                  "classify the voxels, then interpolate colours (pre-classification)"});
+    // Boundary emphasis (the gradient_opacity stage): the bounds are
+    // gradient magnitudes, data units per unit length, given here as
+    // fractions of the value range's width (dataSpan).
+    p.push_back({"gradient_opacity", ParameterType::Bool, 0, 1, 0,
+                 "multiply opacity by a ramp of the gradient magnitude: homogeneous regions fade, boundaries stay"});
+    ParameterSpec low{"gradient_low", ParameterType::Float, 0.0, 0.5, 0.01,
+                      "gradient opacity: at or below this gradient magnitude, no opacity (data units per unit length)"};
+    ParameterSpec high{"gradient_high", ParameterType::Float, 0.0, 0.5, 0.08,
+                       "gradient opacity: at or above this gradient magnitude, full opacity (data units per unit length)"};
+    low.dataSpan = high.dataSpan = true;
+    p.push_back(low);
+    p.push_back(high);
     for (ParameterSpec& s : shadingParameters(false)) p.push_back(s);
     return p;
 }

@@ -58,7 +58,7 @@ bool parameterWidgets(const Renderer& renderer, const Volume& volume, ParameterV
             if (ImGui::SliderInt("##v", &i, int(p.minValue), int(p.maxValue))) value = i, changed = true;
         } else {
             float f = float(value);
-            const double limit = p.dataUnits ? 1e30 : 512.0;
+            const double limit = p.scaledByData() ? 1e30 : 512.0;
             const float lo = float(std::max(p.minValue, -limit)), hi = float(std::min(p.maxValue, limit));
             if (ImGui::SliderFloat("##v", &f, lo, hi)) value = f, changed = true;
         }

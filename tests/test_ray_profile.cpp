@@ -128,6 +128,21 @@ TEST_F(RayProfileTest, CompositeShadedPreclassifiedJitteredMatchesTheRenderer) {
                                                   << ")";
 }
 
+// Gradient-opacity modulation (the gradient_opacity stage) weights each
+// sample's opacity by a ramp of |grad f|; with the ramp off the same pixels
+// differ by far more than the tolerance, so the profile must model it.
+TEST_F(RayProfileTest, CompositeWithGradientOpacityMatchesTheRenderer) {
+    Scene s = orbitScene("composite", 40, 30, 20);
+    s.transferFunction = preset("bonsai.json");
+    s.parameters = {{"gradient_opacity", 1}, {"gradient_low", 4}, {"gradient_high", 30}};
+    const Comparison c = compareWithRenderer(dataset("bonsai.nrrd"), s, 3);
+    EXPECT_GT(c.hits, c.pixels / 3);
+    EXPECT_LE(c.maxError, kPixelTolerance) << "worst pixel (" << c.worstX << ", " << c.worstY << ")";
+    Scene plain = s;
+    plain.parameters = {};
+    EXPECT_GT(compareWithRenderer(dataset("bonsai.nrrd"), s, 3, &plain).maxError, 10 * kPixelTolerance);
+}
+
 TEST_F(RayProfileTest, ProjectionsMatchTheRenderer) {
     Scene mip = orbitScene("mip", 40, 60, -25, Projection::Orthographic);
     mip.window = glm::dvec2(20.0, 220.0);

@@ -208,6 +208,13 @@ struct Lighting {
     }
 };
 
+// The gradient-opacity weight of a gradient magnitude g: 0 at or below low,
+// 1 at or above high, linear between; a step at high when high <= low.
+double rampWeight(double g, double low, double high) {
+    if (high <= low) return g < high ? 0.0 : 1.0;
+    return std::clamp((g - low) / (high - low), 0.0, 1.0);
+}
+
 // The GPU's per-pixel random number for jitter (shaders/voxlab/ray.glsl,
 // pixel_random): an integer hash of the fragment's integer coordinates,
 // whose rows count from the bottom. A profile must use the very same number
@@ -347,6 +354,7 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
 
     if (profile.model == ProfileModel::Composite) {
         const bool preclassify = param("preclassify") != 0.0, backToFront = param("back_to_front") != 0.0;
+        const bool gradientOpacity = param("gradient_opacity") != 0.0;
         profile.earlyTermination = backToFront ? 1.0 : param("early_termination");
         auto classifyVoxel = [&](glm::ivec3 ijk) { return glm::dvec4(tf->evaluate(reader.voxel(ijk))); };
         // Pre-classification: the 8 voxels around p classified, their
@@ -369,6 +377,8 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
         for (int m = 0; m < count; ++m) {
             RaySample& s = profile.samples[m];
             glm::dvec4 c = preclassify ? classifyPre(s.position) : glm::dvec4(tf->evaluate(s.value));
+            if (c.a > 0.0 && gradientOpacity)  // the gradient_opacity stage's ramp (its handout)
+                c.a *= rampWeight(glm::length(gradients.at(s.position)), param("gradient_low"), param("gradient_high"));
             if (c.a > 0.0 && lighting.on)
                 c = glm::dvec4(lighting.shade(glm::dvec3(c), gradients.at(s.position), dir), c.a);
             // Opacity per unit length, corrected for a step of stepUnits units.

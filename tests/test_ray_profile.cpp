@@ -143,6 +143,20 @@ TEST_F(RayProfileTest, CompositeWithGradientOpacityMatchesTheRenderer) {
     EXPECT_GT(compareWithRenderer(dataset("bonsai.nrrd"), s, 3, &plain).maxError, 10 * kPixelTolerance);
 }
 
+// Local ambient occlusion (the ambient_occlusion stage) darkens each sample's
+// colour by the opacity around it; the profile models it too.
+TEST_F(RayProfileTest, CompositeWithAmbientOcclusionMatchesTheRenderer) {
+    Scene s = orbitScene("composite", 40, 40, 25);
+    s.transferFunction = preset("tooth.json");
+    s.parameters = {{"ambient_occlusion", 1}, {"ao_radius", 6}, {"ao_strength", 1}, {"shading", 1}};
+    const Comparison c = compareWithRenderer(dataset("tooth.nrrd"), s, 3);
+    EXPECT_GT(c.hits, c.pixels / 4);
+    EXPECT_LE(c.maxError, kPixelTolerance) << "worst pixel (" << c.worstX << ", " << c.worstY << ")";
+    Scene plain = s;
+    plain.parameters = {{"shading", 1}};
+    EXPECT_GT(compareWithRenderer(dataset("tooth.nrrd"), s, 3, &plain).maxError, 10 * kPixelTolerance);
+}
+
 TEST_F(RayProfileTest, ProjectionsMatchTheRenderer) {
     Scene mip = orbitScene("mip", 40, 60, -25, Projection::Orthographic);
     mip.window = glm::dvec2(20.0, 220.0);

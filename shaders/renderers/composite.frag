@@ -2,7 +2,8 @@
 // Renderer "composite": direct volume rendering with the 1D transfer
 // function. The stages are the compositing loops and the classification in
 // composite/composite.glsl; shading is the gradient and shading stages; with
-// `gradient_opacity` the opacity is weighted by the gradient_opacity stage.
+// `gradient_opacity` the opacity is weighted by the gradient_opacity stage,
+// with `ambient_occlusion` the colour darkened by the ambient_occlusion stage.
 // The loops get the ray in runs between empty bricks (voxlab/runs.glsl).
 #include "voxlab/ray.glsl"
 #include "voxlab/classify.glsl"
@@ -10,6 +11,7 @@
 #include "voxlab/lighting.glsl"
 #include "composite/composite.glsl"
 #include "gradient_opacity/gradient_opacity.glsl"
+#include "ambient_occlusion/ambient_occlusion.glsl"
 #define RUN_FRONT_TO_BACK composite_front_to_back
 #define RUN_BACK_TO_FRONT composite_back_to_front
 #include "voxlab/runs.glsl"
@@ -20,6 +22,9 @@ uniform int u_jitter;
 uniform int u_gradient_opacity;
 uniform float u_gradient_low;
 uniform float u_gradient_high;
+uniform int u_ambient_occlusion;
+uniform float u_ao_radius;
+uniform float u_ao_strength;
 
 out vec4 frag_color;
 
@@ -28,6 +33,8 @@ vec4 sample_colour(vec3 p, Ray ray) {
     if (u_gradient_opacity != 0 && c.a > 0.0)
         c.a *= gradient_opacity_weight(length(gradient_at(p)), u_gradient_low, u_gradient_high);
     if (c.a > 0.0) c.rgb = shade_sample(c.rgb, p, ray);
+    if (u_ambient_occlusion != 0 && c.a > 0.0)
+        c.rgb *= 1.0 - u_ao_strength * ambient_occlusion(p, u_ao_radius * u_min_spacing);
     return c;
 }
 

@@ -215,6 +215,22 @@ double rampWeight(double g, double low, double high) {
     return std::clamp((g - low) / (high - low), 0.0, 1.0);
 }
 
+// Local ambient occlusion (the ambient_occlusion stage's handout): the mean
+// clamped opacity at the 14 points `radius` away from p along the 6 axes and
+// the 8 unit diagonals; a point outside the box counts 0.
+double localOcclusion(const VolumeReader& reader, const TransferFunction& tf, const glm::dvec3& p, double radius) {
+    double sum = 0.0;
+    for (int i = 0; i < 14; ++i) {
+        glm::dvec3 d(0.0);
+        if (i < 6) d[i / 2] = i % 2 == 0 ? 1.0 : -1.0;
+        else d = glm::dvec3((i - 6) & 1 ? 1.0 : -1.0, (i - 6) & 2 ? 1.0 : -1.0, (i - 6) & 4 ? 1.0 : -1.0) / std::sqrt(3.0);
+        const glm::dvec3 q = p + radius * d;
+        if (glm::all(glm::greaterThanEqual(q, glm::dvec3(0.0))) && glm::all(glm::lessThanEqual(q, reader.extent())))
+            sum += std::clamp(double(tf.evaluate(reader.sample(q)).a), 0.0, 1.0);
+    }
+    return sum / 14.0;
+}
+
 // The GPU's per-pixel random number for jitter (shaders/voxlab/ray.glsl,
 // pixel_random): an integer hash of the fragment's integer coordinates,
 // whose rows count from the bottom. A profile must use the very same number
@@ -355,6 +371,10 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
     if (profile.model == ProfileModel::Composite) {
         const bool preclassify = param("preclassify") != 0.0, backToFront = param("back_to_front") != 0.0;
         const bool gradientOpacity = param("gradient_opacity") != 0.0;
+        const bool ambientOcclusion = param("ambient_occlusion") != 0.0;
+        auto occlusion = [&](const glm::dvec3& p) {
+            return localOcclusion(reader, *tf, p, param("ao_radius") * volume.minSpacing());
+        };
         profile.earlyTermination = backToFront ? 1.0 : param("early_termination");
         auto classifyVoxel = [&](glm::ivec3 ijk) { return glm::dvec4(tf->evaluate(reader.voxel(ijk))); };
         // Pre-classification: the 8 voxels around p classified, their
@@ -381,6 +401,8 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
                 c.a *= rampWeight(glm::length(gradients.at(s.position)), param("gradient_low"), param("gradient_high"));
             if (c.a > 0.0 && lighting.on)
                 c = glm::dvec4(lighting.shade(glm::dvec3(c), gradients.at(s.position), dir), c.a);
+            if (c.a > 0.0 && ambientOcclusion)  // the ambient_occlusion stage (its handout)
+                c = glm::dvec4(glm::dvec3(c) * (1.0 - param("ao_strength") * occlusion(s.position)), c.a);
             // Opacity per unit length, corrected for a step of stepUnits units.
             const double a = 1.0 - std::pow(1.0 - std::clamp(c.a, 0.0, 1.0), scene.step);
             s.classified = glm::vec4(glm::vec3(c), float(a));

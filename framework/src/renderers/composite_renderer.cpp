@@ -26,6 +26,13 @@ std::vector<ParameterSpec> CompositeRenderer::parameters() const {
     low.dataSpan = high.dataSpan = true;
     p.push_back(low);
     p.push_back(high);
+    // Local ambient occlusion (the ambient_occlusion stage).
+    p.push_back({"ambient_occlusion", ParameterType::Bool, 0, 1, 0,
+                 "darken each sample by the mean opacity around it (local ambient occlusion)"});
+    p.push_back({"ao_radius", ParameterType::Float, 0.5, 16, 3,
+                 "ambient occlusion: how far around the sample to look, in smallest spacings"});
+    p.push_back({"ao_strength", ParameterType::Float, 0, 1, 0.8,
+                 "ambient occlusion: how much a fully surrounded sample is darkened"});
     for (ParameterSpec& s : shadingParameters(false)) p.push_back(s);
     return p;
 }

@@ -70,7 +70,7 @@ TEST_F(FunctionChecks, ListsOneCheckPerStageWithADescription) {
         {"plane_box_random", "texslice3d"},  {"first_hit_random_rays", "firsthit"},
         {"iso_hit_random_rays", "iso"},      {"mip_random_rays", "mip"},
         {"minip_random_rays", "minip"},      {"average_random_rays", "average"},
-        {"gradient_opacity_random", "gradient_opacity"}};
+        {"gradient_opacity_random", "gradient_opacity"}, {"attenuated_mip_random_rays", "attenuated_mip"}};
     std::map<std::string, std::string> listed;
     for (const FunctionCheckInfo& info : functionChecks()) {
         listed[info.name] = info.stage;
@@ -191,6 +191,9 @@ struct CpuVolume {
         return sum;
     }
     double nearest(dvec3 p) const { return voxel(glm::ivec3(glm::floor(p / extent * dvec3(dims)))); }
+    // The volume's value range (the shaders' u_value_range).
+    double lowest() const { return *std::min_element(values.begin(), values.end()) * scale + offset; }
+    double highest() const { return *std::max_element(values.begin(), values.end()) * scale + offset; }
 };
 
 // Trilinear in double from the 8 centres' tent weights; nearest by
@@ -469,6 +472,41 @@ TEST_F(FunctionChecks, ProjectionsMatchACpuWalkAlongTheSamples) {
         EXPECT_GE(positive, 40) << stage;
         EXPECT_GE(fromInside, 40) << stage;
     }
+}
+
+// attenuated_mip_random_rays: the reference's values against the stage's
+// formula (its handout) over the README's samples, in double from the
+// fixture's voxels: I = max_m lo + (f_m - lo) exp(-attenuation D_m)
+// exp(-depth_cue (m + 1/2) step_units), D_m the normalised intensity before
+// sample m times step_units. 8 data units as for the projections.
+TEST_F(FunctionChecks, AttenuatedMipMatchesTheFormulaAlongTheSamples) {
+    const json& check = reference("attenuated_mip_random_rays");
+    const CpuVolume volume(check["fixture"]["volume"]);
+    const double lo = volume.lowest(), range = volume.highest() - volume.lowest();
+    int attenuated = 0, cued = 0;
+    double worst = 0.0, dimmed = 0.0;
+    for (const json* c : casesOf(check, "attenuated_mip_ray")) {
+        const json& in = c->at("input");
+        const CpuMarch ray(in);
+        const double units = in["step_units"], attenuation = in["attenuation"], cue = in["depth_cue"];
+        double best = -1e300, depth = 0.0, plain = -1e300;
+        for (int m = 0; m < ray.samples(); ++m) {
+            const double f = volume.trilinear(ray.at(ray.t(m)));
+            best = std::max(best, lo + (f - lo) * std::exp(-attenuation * depth) * std::exp(-cue * (m + 0.5) * units));
+            plain = std::max(plain, f);
+            depth += (f - lo) / range * units;
+        }
+        const double got = c->at("output")["value"].get<double>();
+        worst = std::max(worst, std::abs(got - best));
+        ASSERT_NEAR(got, best, 8.0) << c->dump();
+        attenuated += attenuation > 0.0, cued += cue > 0.0;
+        dimmed = std::max(dimmed, plain - best);
+    }
+    std::printf("  worst |reference - CPU| %.3g; %d rays attenuated, %d depth-cued; the most a ray is dimmed: %.0f\n",
+                worst, attenuated, cued, dimmed);
+    EXPECT_GE(attenuated, 100);
+    EXPECT_GE(cued, 100);
+    EXPECT_GT(dimmed, 1000.0) << "the inputs should dim some rays far beyond the tolerance";
 }
 
 // The first sample whose CPU-interpolated value reaches the threshold, in

@@ -873,6 +873,49 @@ json runProjection(const std::string& root, const std::string& stage, const std:
     return check;
 }
 
+// attenuated_mip_random_rays (stage attenuated_mip): as the projections,
+// with a random attenuation (0..0.5 per unit length of normalised
+// intensity) and depth cue (0..0.1 per unit length) per ray; a quarter of
+// the rays have one of them 0, so each term is also seen alone.
+json runAttenuatedMipRays(const std::string& root) {
+    CheckRandom rng(0x5EED0011u);
+    probe::ProbeVolume volume = randomVolume(rng, glm::ivec3(6, 7, 5), glm::dvec3(1.3, 0.8, 1.1), 65535.0, -32768.0);
+    for (float& v : volume.values) v = float(std::round(double(v) * 65535.0) / 65535.0);
+    volume.linearFilter = true;
+    const double minSpacing = f32(std::min({volume.extent.x / 6.0, volume.extent.y / 7.0, volume.extent.z / 5.0}));
+    std::vector<ProbeRay> rays;
+    std::vector<glm::dvec3> settings;  // step, attenuation, depth cue
+    while (int(rays.size()) < kCases) {
+        const ProbeRay ray = marchingRay(rng, glm::dvec3(volume.extent), rays.size());
+        const double step = f32(rng.range(0.2, 0.9));
+        if (clearSampleCount(ray, step) < 1) continue;
+        const int kind = int(rays.size()) % 4;
+        settings.push_back({step, kind == 1 ? 0.0 : f32(rng.range(0.0, 0.5)), kind == 2 ? 0.0 : f32(rng.range(0.0, 0.1))});
+        rays.push_back(ray);
+    }
+    const probe::ProbeResults results =
+        marchRays(root, "probes/attenuated_mip_probe.frag", volume, rays, [&](const ShaderProgram& program, int i) {
+            const glm::dvec3& c = settings[std::size_t(i)];
+            program.set("u_step", float(c.x));
+            program.set("u_step_units", float(c.x / minSpacing));
+            program.set("u_attenuation", float(c.y));
+            program.set("u_depth_cue", float(c.z));
+        });
+    json check = checkJson("attenuated_mip_random_rays", "attenuated_mip", rng.seed());
+    check["fixture"] = {{"volume", volumeJson(volume)}, {"interpolation", "hardware"}, {"min_spacing", minSpacing}};
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+        json input = rayInput(rays[k], settings[k].x);
+        input["step_units"] = f32(settings[k].x / minSpacing);
+        input["attenuation"] = settings[k].y;
+        input["depth_cue"] = settings[k].z;
+        input["units"] = "attenuation per unit length of intensity normalised to the volume's range, depth cue per "
+                         "unit length; unit length = the smallest spacing";
+        addCase(check, "attenuated_mip_ray", input, {{"value", number(results.first[k].x)}});
+    }
+    check["not_implemented"] = results.notImplemented;
+    return check;
+}
+
 json runMipRays(const std::string& root) { return runProjection(root, "mip", "mip_ray", 0x5EED000Au); }
 json runMinipRays(const std::string& root) { return runProjection(root, "minip", "minip_ray", 0x5EED000Bu); }
 json runAverageRays(const std::string& root) { return runProjection(root, "average", "average_ray", 0x5EED000Cu); }
@@ -1270,6 +1313,10 @@ const std::vector<CheckDefinition>& definitions() {
           "iso_hit() on random rays through a bumpy ball, with random steps and 0 or 4 to 6 bisection steps: "
           "misses, hits from outside, rays starting inside; t within step / 2^(k+3) for k steps"},
          runIsoHit, compareIsoHit},
+        {{"attenuated_mip_random_rays", "attenuated_mip",
+          "attenuated_mip_ray() on random rays through a random 6x7x5 volume of int16 values with unequal spacings, "
+          "random steps, attenuations and depth cues (each alone on a quarter of the rays); values within 8"},
+         runAttenuatedMipRays, compareProjection},
         {{"gradient_opacity_random", "gradient_opacity",
           "gradient_opacity_weight() for random gradient magnitudes and bounds from 0.1 to 10^4 data units per "
           "unit length: below, inside and above the ramp, exactly on its bounds, equal and reversed bounds"},

@@ -30,6 +30,90 @@ int glfwKey(const std::string& name) {
     return GLFW_KEY_UNKNOWN;  // parsing already refused other names
 }
 
+// The steps that change what is rendered: the scene, its data and camera.
+// False for any other command.
+bool sceneStep(State& s, const ViewerStep& st) {
+    const std::string& c = st.command;
+    if (c == "load" || c == "scene") {
+        loadDataset(s, dataPath(st, 0));
+    } else if (c == "renderer") {
+        rendererRegistry().get(word(st, 0));  // throws for an unknown id
+        s.scene.renderer = word(st, 0);
+        s.scene.parameters.clear();
+    } else if (c == "param") {
+        s.scene.parameters[word(st, 0)] = number(st, 1);
+        rendererRegistry().get(s.scene.renderer).resolveParameters(s.scene.parameters);
+    } else if (c == "step") {
+        s.scene.step = number(st, 0);
+    } else if (c == "interpolation") {
+        s.scene.interpolation = parseInterpolation(word(st, 0));
+    } else if (c == "tf") {
+        s.tfPath = word(st, 0) == "none" ? "" : dataPath(st, 0);  // the panel shows its name
+        if (word(st, 0) == "none") s.scene.transferFunction.reset();
+        else s.scene.transferFunction = TransferFunction::load(s.tfPath);
+    } else if (c == "tf2d") {
+        if (word(st, 0) == "none") s.scene.transferFunction2D.reset();
+        else s.scene.transferFunction2D = TransferFunction2D::load(dataPath(st, 0));
+    } else if (c == "camera") {
+        applyCameraStep(st, &s.scene.camera);
+    } else if (c == "rotate") {
+        rotateCamera(&s.scene.camera, number(st, 0), number(st, 1));
+    } else if (c == "window") {
+        s.scene.window = glm::dvec2(number(st, 0), number(st, 1));
+    } else if (c == "skipping") {
+        s.scene.skipEmptySpace = onOff(st, 0);
+    } else {
+        return false;
+    }
+    return true;
+}
+
+// The steps that change how the window shows it: split view, sides,
+// panels, the ray profile, the UI's scale, a deck's slide. False for any
+// other command.
+bool viewStep(State& s, const ViewerStep& st) {
+    const std::string& c = st.command;
+    if (c == "samples") {
+        s.showSamples = onOff(st, 0);
+    } else if (c == "split") {
+        const std::string& m = word(st, 0);
+        s.split = m == "on" ? SplitMode::Split : m == "difference" ? SplitMode::Difference : SplitMode::Off;
+    } else if (c == "divider") {
+        s.divider = float(number(st, 0));
+    } else if (c == "implementation") {
+        const std::string& which = word(st, 0);
+        setImplementation(s.main, which == "reference" ? "" : which == "student" ? s.studentRoot : which, *s.volume);
+    } else if (c == "right") {
+        s.other.renderer = word(st, 0) == "same" ? "" : word(st, 0);
+    } else if (c == "panel") {
+        const std::string& p = word(st, 0);
+        const bool on = onOff(st, 1);
+        if (p == "slices") s.showSlices = on;
+        else if (p == "tf" || p == "tf2d") s.showTransferFunction = on;
+        else if (p == "profile") s.showProfile = on;
+        else if (p == "help") s.showHelp = on;
+        else if (p == "controls") s.showPanel = on;
+        else failStep(st, "unknown panel '" + p + "' (slices, tf, tf2d, profile, help, controls)");
+    } else if (c == "enlarge") {
+        const std::string& v = word(st, 0);
+        s.showSlices = true;
+        if (!s.sliceViewer) s.sliceViewer = std::make_unique<SliceViewer>();
+        s.sliceViewer->enlarged = v == "axial" ? kAxialAxis : v == "coronal" ? kCoronalAxis : v == "sagittal" ? kSagittalAxis : -1;
+    } else if (c == "click") {
+        pickRayProfile(s, glm::ivec2(integer(st, 0), integer(st, 1)));
+    } else if (c == "ui-scale") {
+        applyUiScale(s, float(number(st, 0)), s.windowScale);
+    } else if (c == "slide") {
+        if (!s.deck) failStep(st, "no deck is open (voxlab view --deck FILE)");
+        if (integer(st, 0) > int(s.deck->slides.size()))
+            failStep(st, "the deck has " + std::to_string(s.deck->slides.size()) + " slides");
+        showSlide(s, integer(st, 0) - 1);
+    } else {
+        return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
@@ -52,79 +136,17 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
     const ViewerStep& st = steps_[next_++];
     const std::string& c = st.command;
     try {
-        if (c == "load" || c == "scene") {
-            loadDataset(s, dataPath(st, 0));
-        } else if (c == "renderer") {
-            rendererRegistry().get(word(st, 0));  // throws for an unknown id
-            s.scene.renderer = word(st, 0);
-            s.scene.parameters.clear();
-        } else if (c == "param") {
-            s.scene.parameters[word(st, 0)] = number(st, 1);
-            rendererRegistry().get(s.scene.renderer).resolveParameters(s.scene.parameters);
-        } else if (c == "step") {
-            s.scene.step = number(st, 0);
-        } else if (c == "interpolation") {
-            s.scene.interpolation = parseInterpolation(word(st, 0));
-        } else if (c == "tf") {
-            s.tfPath = word(st, 0) == "none" ? "" : dataPath(st, 0);  // the panel shows its name
-            if (word(st, 0) == "none") s.scene.transferFunction.reset();
-            else s.scene.transferFunction = TransferFunction::load(s.tfPath);
-        } else if (c == "tf2d") {
-            if (word(st, 0) == "none") s.scene.transferFunction2D.reset();
-            else s.scene.transferFunction2D = TransferFunction2D::load(dataPath(st, 0));
+        if (sceneStep(s, st) || viewStep(s, st)) {
+            // applied: the next frame shows it
         } else if (c == "key") {
             heldKey_ = glfwKey(word(st, 0));
             ImGui_ImplGlfw_KeyCallback(window, heldKey_, 0, GLFW_PRESS, 0);
             return Continue;  // the viewer's key handling marks what changed
-        } else if (c == "ui-scale") {
-            applyUiScale(s, float(number(st, 0)), s.windowScale);
-        } else if (c == "slide") {
-            if (!s.deck) failStep(st, "no deck is open (voxlab view --deck FILE)");
-            if (integer(st, 0) > int(s.deck->slides.size()))
-                failStep(st, "the deck has " + std::to_string(s.deck->slides.size()) + " slides");
-            showSlide(s, integer(st, 0) - 1);
-        } else if (c == "camera") {
-            applyCameraStep(st, &s.scene.camera);
         } else if (c == "drag") {
             dragDx_ = number(st, 0), dragDy_ = number(st, 1), dragFrames_ = integer(st, 2);
             dragTimes_.clear();
             refinements_ = 0;
             return Continue;
-        } else if (c == "rotate") {
-            rotateCamera(&s.scene.camera, number(st, 0), number(st, 1));
-        } else if (c == "window") {
-            s.scene.window = glm::dvec2(number(st, 0), number(st, 1));
-        } else if (c == "samples") {
-            s.showSamples = onOff(st, 0);
-        } else if (c == "skipping") {
-            s.scene.skipEmptySpace = onOff(st, 0);
-        } else if (c == "split") {
-            const std::string& m = word(st, 0);
-            s.split = m == "on" ? SplitMode::Split : m == "difference" ? SplitMode::Difference : SplitMode::Off;
-        } else if (c == "divider") {
-            s.divider = float(number(st, 0));
-        } else if (c == "implementation") {
-            const std::string& which = word(st, 0);
-            setImplementation(s.main, which == "reference" ? "" : which == "student" ? s.studentRoot : which,
-                              *s.volume);
-        } else if (c == "right") {
-            s.other.renderer = word(st, 0) == "same" ? "" : word(st, 0);
-        } else if (c == "panel") {
-            const std::string& p = word(st, 0);
-            const bool on = onOff(st, 1);
-            if (p == "slices") s.showSlices = on;
-            else if (p == "tf" || p == "tf2d") s.showTransferFunction = on;
-            else if (p == "profile") s.showProfile = on;
-            else if (p == "help") s.showHelp = on;
-            else if (p == "controls") s.showPanel = on;
-            else failStep(st, "unknown panel '" + p + "' (slices, tf, tf2d, profile, help, controls)");
-        } else if (c == "enlarge") {
-            const std::string& v = word(st, 0);
-            s.showSlices = true;
-            if (!s.sliceViewer) s.sliceViewer = std::make_unique<SliceViewer>();
-            s.sliceViewer->enlarged = v == "axial" ? kAxialAxis : v == "coronal" ? kCoronalAxis : v == "sagittal" ? kSagittalAxis : -1;
-        } else if (c == "click") {
-            pickRayProfile(s, glm::ivec2(integer(st, 0), integer(st, 1)));
         } else if (c == "size") {
             glfwSetWindowSize(window, integer(st, 0), integer(st, 1));
             waitFrames_ = 2;

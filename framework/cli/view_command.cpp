@@ -1,5 +1,6 @@
 // voxlab view: the interactive viewer on a dataset or scene.
 #include <iostream>
+#include <utility>
 
 #include "commands.h"
 #include "voxlab/error.h"
@@ -53,14 +54,14 @@ int viewCommand(int argc, char** argv) {
     }
     ViewerOptions options;
     if (auto deckFile = args.get("deck")) {  // checked whole before any window opens
-        const Deck deck = loadDeck(*deckFile);
+        Deck deck = loadDeck(*deckFile);
         for (std::size_t i = 0; i < deck.slides.size(); ++i)
             if (!rendererRegistry().find(deck.slides[i].scene.renderer))
                 throw Error(*deckFile + ": slide " + std::to_string(i + 1) + ": renderer '" +
                             deck.slides[i].scene.renderer + "' is not known (voxlab list)");
         if (!pos.empty() || args.has("dataset")) throw Error("view: --deck gives the scenes; no dataset or scene too");
         base = deck.slides[0].scene;
-        options.deck = *deckFile;
+        options.deck = std::move(deck);
     }
     const Scene scene = sceneFromArgs(args, "view", base ? &*base : nullptr);
     options.implementationRoot = args.get("implementation").value_or("");

@@ -1,8 +1,10 @@
 // voxlab: the interactive viewer (GLFW + Dear ImGui).
 #pragma once
 
+#include <optional>
 #include <string>
 
+#include "voxlab/deck.h"
 #include "voxlab/scene.h"
 
 namespace voxlab {
@@ -12,7 +14,7 @@ struct ViewerOptions {
     std::string studentRoot;         // the implementation switch's "student" side; empty: assignments/
     std::string script;              // a viewer script (viewer_script.h) to run instead of a person
     bool keepOpen = false;           // after the script, leave the window to a person
-    std::string deck;                // a demo deck (deck.h): arrow keys step through its slides
+    std::optional<Deck> deck;        // a demo deck (deck.h): arrow keys step through its slides
     float uiScale = 1.0f;            // presentation mode: everything ImGui draws, times this
     // Scripted use (tests, README screenshots): render `frames` frames, save
     // a screenshot of the whole window to `screenshot`, and close.

@@ -186,6 +186,41 @@ bool saveRequestedScreenshot(State& s, bool script) {
     return true;
 }
 
+// One frame: input, panels and overlays, the images, the UI drawn over them.
+// A scale asked for by a key is applied first, between frames, since the
+// font atlas is rebuilt.
+void drawFrame(State& s, GLFWwindow* window) {
+    if (s.requestedUiScale > 0.0f) {
+        applyUiScale(s, s.requestedUiScale, s.windowScale);
+        s.requestedUiScale = 0.0f;
+        s.say("UI scale " + std::to_string(int(s.uiScale * 100 + 0.5f)) + "% (+ and - keys)", 2.0);
+    }
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    handleMouse(window, s);
+    handleKeys(s);
+    drawPanels(s);
+    drawOverlays(s);
+    s.relayout = false;
+    renderFrame(s);
+    presentFrame(s);
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+// GL objects go while the context still exists, then ImGui.
+void shutDown(State& s) {
+    s.main.engine.reset();
+    s.other.engine.reset();
+    s.sliceViewer.reset();
+    s.presenter.reset();
+    releaseTransferFunctionEditorTextures();
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+}
+
 }  // namespace
 }  // namespace viewer
 
@@ -195,7 +230,7 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
     s.scene = initial;
     s.studentRoot = options.studentRoot.empty() ? projectRoot() + "/assignments" : options.studentRoot;
     s.hasReference = defaultImplementationRoot() == projectRoot() + "/reference";
-    if (!options.deck.empty()) s.deck = loadDeck(options.deck);
+    s.deck = options.deck;
     auto volume = std::make_unique<Volume>(loadVolume(initial.dataset));
     GlfwWindow window(options.width, options.height, "voxlab");
     setImplementation(s.main, options.implementationRoot, *volume);
@@ -242,23 +277,7 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
             }
         }
         loadDropped(s);
-        if (s.requestedUiScale > 0.0f) {  // between frames: the font atlas is rebuilt
-            applyUiScale(s, s.requestedUiScale, s.windowScale);
-            s.requestedUiScale = 0.0f;
-            s.say("UI scale " + std::to_string(int(s.uiScale * 100 + 0.5f)) + "% (+ and - keys)", 2.0);
-        }
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui_ImplGlfw_NewFrame();
-        ImGui::NewFrame();
-        handleMouse(window.handle(), s);
-        handleKeys(s);
-        drawPanels(s);
-        drawOverlays(s);
-        s.relayout = false;
-        renderFrame(s);
-        presentFrame(s);
-        ImGui::Render();
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        drawFrame(s, window.handle());
         ++frame;
         if (!saveRequestedScreenshot(s, script != nullptr)) {
             exitCode = 1;
@@ -275,14 +294,7 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
         if (!script && !s.dirty && !s.interactive && !s.dragging && !s.panning) glfwWaitEventsTimeout(0.25);
     }
     g_state = nullptr;
-    s.main.engine.reset();
-    s.other.engine.reset();
-    s.sliceViewer.reset();
-    s.presenter.reset();
-    releaseTransferFunctionEditorTextures();
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui_ImplGlfw_Shutdown();
-    ImGui::DestroyContext();
+    shutDown(s);
     return exitCode;
 }
 

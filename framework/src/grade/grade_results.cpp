@@ -228,39 +228,32 @@ std::vector<Test> stageTests(const json& stage) {
     std::vector<double> maxima, scores;
     for (const Test& t : tests) maxima.push_back(t.maxScore), scores.push_back(t.score);
     const std::vector<long long> maxCents = apportion(maxima, cents(stage.value("max_score", 0.0)));
-    // An item with full marks shows its full (rounded) points; the others
-    // share what is left of the stage's score.
-    std::vector<long long> scoreCents(tests.size()), caps;
-    std::vector<double> partial;
-    std::vector<std::size_t> partialIndex;
-    long long full = 0;
-    for (std::size_t i = 0; i < tests.size(); ++i)
-        if (scores[i] >= maxima[i] - 1e-9) {
-            scoreCents[i] = maxCents[i];
-            full += maxCents[i];
-        } else {
-            partial.push_back(scores[i]);
-            partialIndex.push_back(i);
-            caps.push_back(maxCents[i]);
-        }
-    const long long stageCents = cents(stage.value("score", 0.0));
-    if (full > stageCents) {
-        // The maxima's rounding gave the full-mark items more than the
-        // stage scored (three items of 4/3 out of 10: 1.34 + 1.34 + 1.33 >
-        // 4.00): they share the stage's score instead, a cent below their
-        // maximum at worst.
-        std::vector<double> fullScores;
-        std::vector<long long> fullCaps;
-        std::vector<std::size_t> fullIndex;
+    // The items with full marks (or the others) share `total` cents by their
+    // scores, none above its rounded maximum; returns what they got.
+    std::vector<long long> scoreCents(tests.size());
+    const auto share = [&](bool fullMarks, long long total) {
+        std::vector<double> values;
+        std::vector<long long> caps;
+        std::vector<std::size_t> index;
         for (std::size_t i = 0; i < tests.size(); ++i)
-            if (scores[i] >= maxima[i] - 1e-9)
-                fullScores.push_back(scores[i]), fullCaps.push_back(maxCents[i]), fullIndex.push_back(i);
-        const std::vector<long long> shared = apportion(fullScores, stageCents, &fullCaps);
-        full = 0;
-        for (std::size_t k = 0; k < shared.size(); ++k) scoreCents[fullIndex[k]] = shared[k], full += shared[k];
-    }
-    const std::vector<long long> rest = apportion(partial, std::max(0LL, stageCents - full), &caps);
-    for (std::size_t k = 0; k < rest.size(); ++k) scoreCents[partialIndex[k]] = rest[k];
+            if ((scores[i] >= maxima[i] - 1e-9) == fullMarks)
+                values.push_back(scores[i]), caps.push_back(maxCents[i]), index.push_back(i);
+        const std::vector<long long> got = apportion(values, total, &caps);
+        long long sum = 0;
+        for (std::size_t k = 0; k < got.size(); ++k) scoreCents[index[k]] = got[k], sum += got[k];
+        return sum;
+    };
+    // An item with full marks shows its full (rounded) points, unless the
+    // maxima's rounding gave the full-mark items more than the stage scored
+    // (three items of 4/3 out of 10: 1.34 + 1.34 + 1.33 > 4.00): then they
+    // share the stage's score, a cent below their maximum at worst. The
+    // others share what is left.
+    const long long stageCents = cents(stage.value("score", 0.0));
+    long long fullCaps = 0;
+    for (std::size_t i = 0; i < tests.size(); ++i)
+        if (scores[i] >= maxima[i] - 1e-9) fullCaps += maxCents[i];
+    const long long full = share(true, std::min(fullCaps, stageCents));
+    share(false, std::max(0LL, stageCents - full));
     for (std::size_t i = 0; i < tests.size(); ++i) {
         tests[i].entry["max_score"] = double(maxCents[i]) / 100.0;
         tests[i].entry["score"] = double(scoreCents[i]) / 100.0;

@@ -841,6 +841,22 @@ json runFirstHit(const std::string& root) {
 // (the whole range -32768..32767, negative values included, as the MIP
 // handout promises), with unequal spacings and random steps.
 
+// kCases marching rays through a box of `extent`, each with a random step
+// (0.2 to 0.9) that gives it at least one sample and no doubt about how
+// many; `accepted`, when given, is called after each ray is kept (it may
+// draw more numbers from `rng` for that ray).
+void randomRays(CheckRandom& rng, glm::dvec3 extent, std::vector<ProbeRay>* rays, std::vector<double>* steps,
+                const std::function<void()>& accepted = nullptr) {
+    while (int(rays->size()) < kCases) {
+        const ProbeRay ray = marchingRay(rng, extent, rays->size());
+        const double step = f32(rng.range(0.2, 0.9));
+        if (clearSampleCount(ray, step) < 1) continue;
+        rays->push_back(ray);
+        steps->push_back(step);
+        if (accepted) accepted();
+    }
+}
+
 json runProjection(const std::string& root, const std::string& stage, const std::string& function, std::uint32_t seed) {
     CheckRandom rng(seed);
     probe::ProbeVolume volume = randomVolume(rng, glm::ivec3(6, 7, 5), glm::dvec3(1.3, 0.8, 1.1), 65535.0, -32768.0);
@@ -852,16 +868,9 @@ json runProjection(const std::string& root, const std::string& stage, const std:
         v = float(std::round(u * 65535.0) / 65535.0);
     }
     volume.linearFilter = true;
-    const glm::dvec3 extent(volume.extent);
     std::vector<ProbeRay> rays;
     std::vector<double> steps;
-    while (int(rays.size()) < kCases) {
-        const ProbeRay ray = marchingRay(rng, extent, rays.size());
-        const double step = f32(rng.range(0.2, 0.9));
-        if (clearSampleCount(ray, step) < 1) continue;  // at least one sample, and no doubt about how many
-        rays.push_back(ray);
-        steps.push_back(step);
-    }
+    randomRays(rng, glm::dvec3(volume.extent), &rays, &steps);
     const probe::ProbeResults results =
         marchRays(root, "probes/" + stage + "_probe.frag", volume, rays,
                   [&](const ShaderProgram& program, int i) { program.set("u_step", float(steps[std::size_t(i)])); });
@@ -884,15 +893,12 @@ json runAttenuatedMipRays(const std::string& root) {
     volume.linearFilter = true;
     const double minSpacing = f32(std::min({volume.extent.x / 6.0, volume.extent.y / 7.0, volume.extent.z / 5.0}));
     std::vector<ProbeRay> rays;
+    std::vector<double> steps;
     std::vector<glm::dvec3> settings;  // step, attenuation, depth cue
-    while (int(rays.size()) < kCases) {
-        const ProbeRay ray = marchingRay(rng, glm::dvec3(volume.extent), rays.size());
-        const double step = f32(rng.range(0.2, 0.9));
-        if (clearSampleCount(ray, step) < 1) continue;
-        const int kind = int(rays.size()) % 4;
-        settings.push_back({step, kind == 1 ? 0.0 : f32(rng.range(0.0, 0.5)), kind == 2 ? 0.0 : f32(rng.range(0.0, 0.1))});
-        rays.push_back(ray);
-    }
+    randomRays(rng, glm::dvec3(volume.extent), &rays, &steps, [&] {
+        const int kind = int(settings.size()) % 4;
+        settings.push_back({steps.back(), kind == 1 ? 0.0 : f32(rng.range(0.0, 0.5)), kind == 2 ? 0.0 : f32(rng.range(0.0, 0.1))});
+    });
     const probe::ProbeResults results =
         marchRays(root, "probes/attenuated_mip_probe.frag", volume, rays, [&](const ShaderProgram& program, int i) {
             const glm::dvec3& c = settings[std::size_t(i)];

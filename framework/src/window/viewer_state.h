@@ -134,6 +134,7 @@ struct State {
     // The current side's functions that still hold the starter code's stub
     // (the checkerboard), as one line; empty when none.
     std::string stubNotice;
+    std::string stubKey;  // the files (and their times) it was made from
 
     // Messages: a load error or "saved screenshot" for a few seconds.
     std::string toast;

@@ -3,7 +3,9 @@
 // function. The stages are the compositing loops and the classification in
 // composite/composite.glsl; shading is the gradient and shading stages; with
 // `gradient_opacity` the opacity is weighted by the gradient_opacity stage,
-// with `ambient_occlusion` the colour darkened by the ambient_occlusion stage.
+// with `ambient_occlusion` the colour darkened by the ambient_occlusion stage;
+// with `preintegrated` each sample stands for the segment to the next one,
+// classified by the preintegration stage's table.
 // The loops get the ray in runs between empty bricks (voxlab/runs.glsl).
 #include "voxlab/ray.glsl"
 #include "voxlab/classify.glsl"
@@ -12,11 +14,13 @@
 #include "composite/composite.glsl"
 #include "gradient_opacity/gradient_opacity.glsl"
 #include "ambient_occlusion/ambient_occlusion.glsl"
+#include "preintegration/preintegration.glsl"
 #define RUN_FRONT_TO_BACK composite_front_to_back
 #define RUN_BACK_TO_FRONT composite_back_to_front
 #include "voxlab/runs.glsl"
 
 uniform int u_preclassify;
+uniform int u_preintegrated;
 uniform int u_back_to_front;
 uniform int u_jitter;
 uniform int u_gradient_opacity;
@@ -29,7 +33,9 @@ uniform float u_ao_strength;
 out vec4 frag_color;
 
 vec4 sample_colour(vec3 p, Ray ray) {
-    vec4 c = u_preclassify != 0 ? classify_pre(p) : classify_post(p);
+    vec4 c = u_preintegrated != 0 ? classify_preintegrated(p, ray)
+             : u_preclassify != 0  ? classify_pre(p)
+                                   : classify_post(p);
     if (u_gradient_opacity != 0 && c.a > 0.0)
         c.a *= gradient_opacity_weight(length(gradient_at(p)), u_gradient_low, u_gradient_high);
     if (c.a > 0.0) c.rgb = shade_sample(c.rgb, p, ray);

@@ -118,6 +118,7 @@ private:
         TransferFunctionTable table;
         std::vector<ControlPoint> points;
         glm::dvec2 range{0.0};
+        unsigned long generation = 0;  // counts the bakes (precomputed textures depend on it)
     };
     // What differs between the passes of a cutting-plane view.
     struct Pass {
@@ -130,6 +131,19 @@ private:
         glm::vec3 clipPoint{0.0f}, clipNormal{0.0f};
     };
 
+    // What every program of a pass reads besides the scene (draw()).
+    struct PassInputs {
+        const TransferFunction* tf = nullptr;  // the scene's or the fallback
+        std::vector<Tf2dWidget> widgets;
+    };
+    // A texture made by a Precomputation, and what it was made from.
+    struct PrecomputedTexture {
+        unsigned texture = 0;
+        glm::ivec3 size{0};
+        int channels = 0;
+        std::string key;
+    };
+
     // The program for these shaders with these baked constants (cached).
     const ShaderProgram& program(const std::string& vertexShader, const std::string& fragmentShader,
                                  const ShaderConstants& constants);
@@ -137,6 +151,13 @@ private:
     unsigned sliceStack(int axis);
     void setSceneUniforms(const ShaderProgram& prog, const Scene& scene) const;
     void draw(const Scene& scene, const Pass& pass);
+    void setPassUniforms(const ShaderProgram& prog, const Scene& scene, const Pass& pass, const PassInputs& inputs);
+    // Precomputed textures (render_engine_precompute.cpp): computes the
+    // `index`th of the pass's textures unless it is still up to date, and
+    // binds them all for the entry shader.
+    void runPrecomputation(const Precomputation& what, int index, const Scene& scene, const Pass& pass,
+                           const PassInputs& inputs, const ShaderConstants& constants);
+    void bindPrecomputations(const ShaderProgram& prog, const std::vector<Precomputation>& what, int slot);
     void drawCut(const Scene& scene, unsigned framebuffer);
     void uploadTransferFunction(TransferFunctionSlot& slot, const TransferFunction& tf);
     void uploadGradients(GradientEstimator estimator);
@@ -178,6 +199,11 @@ private:
     unsigned brickTexture_ = 0;
     std::vector<glm::vec4> brickTexels_;
     bool countingSamples_ = false;
+    // Precomputed textures, per transfer-function slot (the two sides of a
+    // cutting plane) and index, and their framebuffer.
+    std::map<std::pair<int, int>, PrecomputedTexture> precomputed_;
+    unsigned precomputeFbo_ = 0;
+    unsigned long shaderGeneration_ = 0;
 };
 
 }  // namespace voxlab

@@ -81,6 +81,26 @@ public:
     virtual void bindSliceStack(int axis, int unit) = 0;
 };
 
+// A texture that a renderer's entry shader reads and that is itself computed
+// on the GPU before the render, by a fragment shader run once per texel (with
+// voxlab/fullscreen.vert): the pre-integration table, the light volume. The
+// shader sees what the entry shader sees (the scene's uniforms, the transfer
+// function, the renderer's parameters, the same baked switches but no
+// skipping) plus u_precompute_size (the texture's size) and
+// u_precompute_layer (the layer a 3D texture is being computed in: one pass
+// per layer), and writes one texel per fragment. The entry shader gets the
+// result as sampler `sampler`, linearly filtered and clamped to its edges.
+// The engine keeps it until `key`, the volume, the transfer function or the
+// shaders change (the renderer puts in `key` whatever else the texture
+// depends on: the step, the light direction).
+struct Precomputation {
+    std::string sampler;         // e.g. "u_preintegration_table"
+    std::string fragmentShader;  // on the shader search path
+    glm::ivec3 size{1};          // size.z == 1: a 2D texture
+    int channels = 4;            // 1 (R32F) or 4 (RGBA32F)
+    std::string key;
+};
+
 class Renderer {
 public:
     virtual ~Renderer() = default;
@@ -134,6 +154,10 @@ public:
     // the shared parameters `precomputed_gradients` and `sobel` get it when
     // `precomputed_gradients` is on; others never do.
     std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const;
+    // The textures to compute before drawing (see Precomputation); none by
+    // default.
+    virtual std::vector<Precomputation> precomputations(const Scene& scene, const Volume& volume,
+                                                        const ParameterValues& values) const;
     // Which bricks of the volume these parameter values let the renderer's
     // rays skip (see empty_space.h); the default skips none.
     virtual EmptySpaceRule emptySpaceRule(const ParameterValues& values) const;

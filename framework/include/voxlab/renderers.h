@@ -72,7 +72,13 @@ public:
     bool needsTransferFunction() const override { return true; }
     EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
     ProfileModel profileModel() const override { return ProfileModel::Composite; }
+    std::vector<Precomputation> precomputations(const Scene& scene, const Volume& volume,
+                                                const ParameterValues& values) const override;
 };
+
+// The pre-integration table's size, texels on each axis (the preintegration
+// stage's PREINTEGRATION_TABLE_SIZE).
+constexpr int kPreintegrationTableSize = 256;
 
 class IsoRenderer final : public Renderer {
 public:

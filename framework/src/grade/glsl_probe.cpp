@@ -16,6 +16,7 @@ namespace {
 constexpr int kRowLength = 64;
 constexpr int kVolumeUnit = 0;
 constexpr int kFirstInputUnit = 1;
+constexpr int kTransferFunctionUnit = kFirstInputUnit + kProbeInputs;
 constexpr int kTargets = 3;  // probe_result0, probe_result1, probe_status
 
 // Restores what the probe changes, so that a render engine sharing the
@@ -89,6 +90,29 @@ GlslProbe::GlslProbe(const std::string& implementationRoot, const std::string& f
 
 GlslProbe::~GlslProbe() {
     if (volumeTexture_) glDeleteTextures(1, &volumeTexture_);
+    if (tfTexture_) glDeleteTextures(1, &tfTexture_);
+}
+
+void GlslProbe::setTransferFunction(const std::vector<glm::vec4>& entries, glm::vec2 range) {
+    if (entries.size() < 2 || entries.size() > 4096) throw Error("probe transfer function: 2 to 4096 entries");
+    GLint activeTexture = GL_TEXTURE0, program = 0;
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+    if (!tfTexture_) glGenTextures(1, &tfTexture_);
+    glActiveTexture(GL_TEXTURE0 + kTransferFunctionUnit);
+    glBindTexture(GL_TEXTURE_2D, tfTexture_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, GLsizei(entries.size()), 1, 0, GL_RGBA, GL_FLOAT, &entries[0].x);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glActiveTexture(GLenum(activeTexture));
+    program_.use();
+    program_.set("u_tf", kTransferFunctionUnit);
+    program_.set("u_tf_range", range);
+    program_.set("u_tf_size", int(entries.size()));
+    program_.set("u_has_tf", 1);
+    glUseProgram(GLuint(program));
+    checkGlError("uploading a probe transfer function");
 }
 
 void GlslProbe::setVolume(const ProbeVolume& volume) {
@@ -139,6 +163,10 @@ ProbeResults GlslProbe::run(int cases, const std::vector<std::vector<glm::vec4>>
     if (volumeTexture_) {
         glActiveTexture(GL_TEXTURE0 + kVolumeUnit);
         glBindTexture(GL_TEXTURE_3D, volumeTexture_);
+    }
+    if (tfTexture_) {
+        glActiveTexture(GL_TEXTURE0 + kTransferFunctionUnit);
+        glBindTexture(GL_TEXTURE_2D, tfTexture_);
     }
     // The targets first: creating a texture binds it to the active unit,
     // which must not be one the probe reads.

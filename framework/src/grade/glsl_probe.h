@@ -56,13 +56,18 @@ public:
     // u_min_spacing and u_value_range included.
     void setVolume(const ProbeVolume& volume);
 
+    // Uploads a 1D transfer-function table (the uniforms of
+    // shaders/voxlab/classify.glsl: u_tf on its own texture unit, u_tf_range,
+    // u_tf_size): `entries` evenly over [range.x, range.y], at most 4096.
+    void setTransferFunction(const std::vector<glm::vec4>& entries, glm::vec2 range);
+
     // Runs `cases` cases; inputs[k][i] is input k of case i.
     ProbeResults run(int cases, const std::vector<std::vector<glm::vec4>>& inputs,
                      const std::function<void(const ShaderProgram&, int)>& perCase = nullptr);
 
 private:
     ShaderProgram program_;
-    unsigned volumeTexture_ = 0;
+    unsigned volumeTexture_ = 0, tfTexture_ = 0;
 };
 
 }  // namespace voxlab::probe

@@ -97,6 +97,8 @@ RenderEngine::~RenderEngine() {
     if (geometryVao_) glDeleteVertexArrays(1, &geometryVao_);
     if (geometryVbo_) glDeleteBuffers(1, &geometryVbo_);
     if (brickTexture_) glDeleteTextures(1, &brickTexture_);
+    for (auto& [index, made] : precomputed_) glDeleteTextures(1, &made.texture);
+    if (precomputeFbo_) glDeleteFramebuffers(1, &precomputeFbo_);
 }
 
 void RenderEngine::setVolume(const Volume& volume) {
@@ -161,6 +163,7 @@ void RenderEngine::uploadTransferFunction(TransferFunctionSlot& slot, const Tran
     checkGlError("uploading the transfer function");
     slot.points = tf.points();
     slot.range = range;
+    ++slot.generation;
 }
 
 void RenderEngine::uploadGradients(GradientEstimator estimator) {
@@ -204,6 +207,7 @@ void RenderEngine::reloadShaders() {
     for (auto& [key, prog] : programs_) previousPrograms_[key] = std::move(prog);
     programs_.clear();
     shaderError_.clear();
+    ++shaderGeneration_;  // precomputed textures are made again
 }
 
 namespace {
@@ -323,61 +327,25 @@ private:
     const ShaderProgram& program_;
 };
 
-void RenderEngine::draw(const Scene& scene, const Pass& pass) {
+// The uniforms and textures of one pass that every program of the pass
+// reads, its precomputations' included: the scene, the clip plane, the
+// transfer functions, the gradient volume and the renderer's parameters.
+void RenderEngine::setPassUniforms(const ShaderProgram& prog, const Scene& scene, const Pass& pass,
+                                   const PassInputs& inputs) {
     const Renderer& renderer = *pass.renderer;
-    const glm::dvec2 window = scene.window.value_or(volume_->valueRange());
-    std::optional<TransferFunction> fallback;
-    const TransferFunction* tf = pass.transferFunction;
-    if (!tf && renderer.needsTransferFunction()) {
-        fallback = fallbackTransferFunction(window);
-        tf = &*fallback;
-    }
-    // Switches are baked into the program (see ShaderConstants): the
-    // interpolation, whether there is a transfer function, the pass's kind,
-    // and every bool parameter.
-    const bool skipping = scene.skipEmptySpace && !renderer.objectOrder();
-    ShaderConstants constants = {{"u_interpolation", int(scene.interpolation)},
-                                 {"u_has_tf", tf ? 1 : 0},
-                                 {"u_layer", pass.layer ? 1 : 0},
-                                 {"u_clip_plane", pass.clip ? 1 : 0},
-                                 {"u_skipping", skipping ? 1 : 0},
-                                 {"u_count_samples", countingSamples_ ? 1 : 0}};
-    for (const ParameterSpec& p : renderer.parameters())
-        if (p.type == ParameterType::Bool) constants["u_" + p.name] = pass.values.at(p.name) != 0.0 ? 1 : 0;
-    const ShaderProgram& prog = program(renderer.vertexShader(), renderer.fragmentShader(), constants);
-    lastRenderSources_.clear();
-    for (const std::string& shown : prog.sourceFiles()) lastRenderSources_.push_back(filePath(shown));
-    prog.use();
-
-    glActiveTexture(GL_TEXTURE0 + kVolumeUnit);
-    glBindTexture(GL_TEXTURE_3D, volumeTexture_);
-    const GLint filter = scene.interpolation == Interpolation::Hardware ? GL_LINEAR : GL_NEAREST;
-    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, filter);
-    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, filter);
     setSceneUniforms(prog, scene);
     prog.set("u_clip_point", pass.clipPoint);
     prog.set("u_clip_normal", pass.clipNormal);
 
     TransferFunctionSlot& slot = tf_[pass.slot];
-    if (tf) {
-        uploadTransferFunction(slot, *tf);
+    if (inputs.tf) {
         prog.set("u_tf_range", glm::vec2(float(slot.table.lo), float(slot.table.hi)));
         prog.set("u_tf_size", slot.table.size);
     }
-    glActiveTexture(GL_TEXTURE0 + kTransferFunctionUnit);
-    glBindTexture(GL_TEXTURE_2D, slot.texture);
     prog.set("u_tf", kTransferFunctionUnit);
-
-    if (const auto estimator = renderer.precomputedGradients(pass.values)) uploadGradients(*estimator);
-    glActiveTexture(GL_TEXTURE0 + kGradientUnit);
-    glBindTexture(GL_TEXTURE_3D, gradientTexture_);
     prog.set("u_gradient_volume", kGradientUnit);
 
-    std::vector<Tf2dWidget> widgets;
-    if (scene.transferFunction2D)
-        widgets = scene.transferFunction2D->widgets();
-    else if (renderer.needsTransferFunction2D())
-        widgets = fallbackTransferFunction2D(window).widgets();
+    const std::vector<Tf2dWidget>& widgets = inputs.widgets;
     prog.set("u_tf2d_count", int(widgets.size()));
     for (std::size_t i = 0; i < widgets.size(); ++i) {
         const Tf2dWidget& w = widgets[i];
@@ -389,10 +357,62 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
                      : glm::vec4(w.valueRange.x, w.radius, 0.0, 0.0));
         prog.set(("u_tf2d_color" + index).c_str(), glm::vec4(w.color, w.alpha));
     }
-
-    if (skipping) bindBricks(prog, renderer.emptySpaceRule(pass.values), tf ? &slot.table : nullptr, widgets);
-
     renderer.setUniforms(prog, pass.values);
+}
+
+void RenderEngine::draw(const Scene& scene, const Pass& pass) {
+    const Renderer& renderer = *pass.renderer;
+    const glm::dvec2 window = scene.window.value_or(volume_->valueRange());
+    std::optional<TransferFunction> fallback;
+    PassInputs inputs;
+    inputs.tf = pass.transferFunction;
+    if (!inputs.tf && renderer.needsTransferFunction()) {
+        fallback = fallbackTransferFunction(window);
+        inputs.tf = &*fallback;
+    }
+    if (scene.transferFunction2D)
+        inputs.widgets = scene.transferFunction2D->widgets();
+    else if (renderer.needsTransferFunction2D())
+        inputs.widgets = fallbackTransferFunction2D(window).widgets();
+    // Switches are baked into the program (see ShaderConstants): the
+    // interpolation, whether there is a transfer function, the pass's kind,
+    // and every bool parameter.
+    const bool skipping = scene.skipEmptySpace && !renderer.objectOrder();
+    ShaderConstants constants = {{"u_interpolation", int(scene.interpolation)},
+                                 {"u_has_tf", inputs.tf ? 1 : 0},
+                                 {"u_layer", pass.layer ? 1 : 0},
+                                 {"u_clip_plane", pass.clip ? 1 : 0},
+                                 {"u_skipping", skipping ? 1 : 0},
+                                 {"u_count_samples", countingSamples_ ? 1 : 0}};
+    for (const ParameterSpec& p : renderer.parameters())
+        if (p.type == ParameterType::Bool) constants["u_" + p.name] = pass.values.at(p.name) != 0.0 ? 1 : 0;
+    const ShaderProgram& prog = program(renderer.vertexShader(), renderer.fragmentShader(), constants);
+    lastRenderSources_.clear();
+    for (const std::string& shown : prog.sourceFiles()) lastRenderSources_.push_back(filePath(shown));
+
+    glActiveTexture(GL_TEXTURE0 + kVolumeUnit);
+    glBindTexture(GL_TEXTURE_3D, volumeTexture_);
+    const GLint filter = scene.interpolation == Interpolation::Hardware ? GL_LINEAR : GL_NEAREST;
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, filter);
+    TransferFunctionSlot& slot = tf_[pass.slot];
+    if (inputs.tf) uploadTransferFunction(slot, *inputs.tf);
+    glActiveTexture(GL_TEXTURE0 + kTransferFunctionUnit);
+    glBindTexture(GL_TEXTURE_2D, slot.texture);
+    if (const auto estimator = renderer.precomputedGradients(pass.values)) uploadGradients(*estimator);
+    glActiveTexture(GL_TEXTURE0 + kGradientUnit);
+    glBindTexture(GL_TEXTURE_3D, gradientTexture_);
+
+    // Precomputed textures first: they draw into framebuffers of their own.
+    constants["u_skipping"] = 0;
+    const std::vector<Precomputation> precomputations = renderer.precomputations(scene, *volume_, pass.values);
+    for (std::size_t i = 0; i < precomputations.size(); ++i)
+        runPrecomputation(precomputations[i], int(i), scene, pass, inputs, constants);
+
+    prog.use();
+    setPassUniforms(prog, scene, pass, inputs);
+    bindPrecomputations(prog, precomputations, pass.slot);
+    if (skipping) bindBricks(prog, renderer.emptySpaceRule(pass.values), inputs.tf ? &slot.table : nullptr, inputs.widgets);
 
     glDisable(GL_DEPTH_TEST);
     if (renderer.objectOrder()) {

@@ -55,6 +55,10 @@ std::optional<GradientEstimator> Renderer::precomputedGradients(const ParameterV
 
 EmptySpaceRule Renderer::emptySpaceRule(const ParameterValues&) const { return {}; }
 
+std::vector<Precomputation> Renderer::precomputations(const Scene&, const Volume&, const ParameterValues&) const {
+    return {};
+}
+
 ParameterValues Renderer::resolveParameters(const ParameterValues& given,
                                             std::optional<glm::dvec2> dataRange) const {
     const std::vector<ParameterSpec> specs = dataRange ? parametersFor(*dataRange) : parameters();

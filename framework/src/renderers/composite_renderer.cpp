@@ -33,12 +33,38 @@ std::vector<ParameterSpec> CompositeRenderer::parameters() const {
                  "ambient occlusion: how far around the sample to look, in smallest spacings"});
     p.push_back({"ao_strength", ParameterType::Float, 0, 1, 0.8,
                  "ambient occlusion: how much a fully surrounded sample is darkened"});
+    // Pre-integrated classification (the preintegration stage).
+    p.push_back({"preintegrated", ParameterType::Bool, 0, 1, 0,
+                 "classify each segment between two samples by a pre-integrated table (fewer samples, no slicing)"});
     for (ParameterSpec& s : shadingParameters(false)) p.push_back(s);
     return p;
 }
 
-EmptySpaceRule CompositeRenderer::emptySpaceRule(const ParameterValues&) const {
+namespace {
+bool on(const ParameterValues& values, const char* name) {
+    const auto it = values.find(name);
+    return it != values.end() && it->second != 0.0;
+}
+}  // namespace
+
+// A pre-integrated segment reaches from its sample to the next one, which
+// may lie in a brick that a skipped one borders: skipping would drop the
+// part of the segment in the visible brick. So it is off for them.
+EmptySpaceRule CompositeRenderer::emptySpaceRule(const ParameterValues& values) const {
+    if (on(values, "preintegrated")) return {EmptySpaceRule::Kind::None};
     return {EmptySpaceRule::Kind::TransferFunction};
+}
+
+// The pre-integration table depends on the transfer function (the engine
+// watches it) and on the segment's length, the step.
+std::vector<Precomputation> CompositeRenderer::precomputations(const Scene& scene, const Volume&,
+                                                               const ParameterValues& values) const {
+    std::vector<Precomputation> list;
+    if (on(values, "preintegrated"))
+        list.push_back({"u_preintegration_table", "precompute/preintegration_table.frag",
+                        glm::ivec3(kPreintegrationTableSize, kPreintegrationTableSize, 1), 4,
+                        "step=" + std::to_string(scene.step)});
+    return list;
 }
 
 }  // namespace voxlab

@@ -21,8 +21,9 @@
 // It returns vec4(C, A): the colour premultiplied by opacity, and the
 // segment's opacity. The framework fills the table with it (one texel per
 // pair of values; see shaders/precompute/preintegration_table.frag), with
-// n at least the number of transfer-function entries between sf and sb, so
-// no feature of the function falls between two sub-segments.
+// n at least the number of table texels and of transfer-function entries
+// between sf and sb, so no feature of the function falls between two
+// sub-segments.
 //
 // classify_preintegrated(p, ray): the segment that starts at sample p and
 // ends one step (u_step, world units) further along the ray. Its values are

@@ -5,7 +5,8 @@
 // `gradient_opacity` the opacity is weighted by the gradient_opacity stage,
 // with `ambient_occlusion` the colour darkened by the ambient_occlusion stage;
 // with `preintegrated` each sample stands for the segment to the next one,
-// classified by the preintegration stage's table.
+// classified by the preintegration stage's table; with `shadows` each lit
+// colour is dimmed by the light volume that the shadows stage fills.
 // The loops get the ray in runs between empty bricks (voxlab/runs.glsl).
 #include "voxlab/ray.glsl"
 #include "voxlab/classify.glsl"
@@ -15,6 +16,7 @@
 #include "gradient_opacity/gradient_opacity.glsl"
 #include "ambient_occlusion/ambient_occlusion.glsl"
 #include "preintegration/preintegration.glsl"
+#include "shadows/shadows.glsl"
 #define RUN_FRONT_TO_BACK composite_front_to_back
 #define RUN_BACK_TO_FRONT composite_back_to_front
 #include "voxlab/runs.glsl"
@@ -29,6 +31,8 @@ uniform float u_gradient_high;
 uniform int u_ambient_occlusion;
 uniform float u_ao_radius;
 uniform float u_ao_strength;
+uniform int u_shadows;
+uniform sampler3D u_light_volume;  // transmittance towards the light (shadows)
 
 out vec4 frag_color;
 
@@ -39,6 +43,7 @@ vec4 sample_colour(vec3 p, Ray ray) {
     if (u_gradient_opacity != 0 && c.a > 0.0)
         c.a *= gradient_opacity_weight(length(gradient_at(p)), u_gradient_low, u_gradient_high);
     if (c.a > 0.0) c.rgb = shade_sample(c.rgb, p, ray);
+    if (u_shadows != 0 && c.a > 0.0) c.rgb *= texture(u_light_volume, p / u_volume_extent).r;
     if (u_ambient_occlusion != 0 && c.a > 0.0)
         c.rgb *= 1.0 - u_ao_strength * ambient_occlusion(p, u_ao_radius * u_min_spacing);
     return c;

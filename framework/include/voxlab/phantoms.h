@@ -35,6 +35,11 @@
 //                  the fat. Rays that miss the body see only -1000: every
 //                  value on them is negative, so a maximum started at 0 (or
 //                  a minimum at 0 where all are positive) shows.
+//  sphere-over-slab float32, a scene for shadows. A slab of value 1 fills
+//                  0.10 N <= z <= 0.25 N (all x and y); a sphere of value
+//                  0.5 and radius 0.15 N floats above it, centred at
+//                  (N/2, N/2, 0.6 N); elsewhere 0. Lit from +z, the sphere
+//                  casts a disc-shaped shadow of radius 0.15 N on the slab.
 //  ramp-x/y/z      float32. value = the voxel centre's coordinate along that
 //                  axis (i+1/2, j+1/2 or k+1/2): a field with gradient
 //                  exactly 1 along one axis, for sampling and gradient tests.
@@ -63,6 +68,12 @@ double spherePhantomValue(int n, glm::dvec3 p);
 
 // --- shells ------------------------------------------------------------------
 inline double shellsPhantomThickness(int n) { return n / 16.0 > 1.0 ? n / 16.0 : 1.0; }
+
+// --- sphere-over-slab ----------------------------------------------------------
+// Its value at world position p (voxel units) for edge length n.
+double sphereOverSlabValue(int n, glm::dvec3 p);
+inline double sphereOverSlabRadius(int n) { return 0.15 * n; }
+inline glm::dvec3 sphereOverSlabCentre(int n) { return {n / 2.0, n / 2.0, 0.6 * n}; }
 
 // --- ct-signed ---------------------------------------------------------------
 // Its value (Hounsfield units) at world position p for edge length n.

@@ -79,6 +79,10 @@ public:
 // The pre-integration table's size, texels on each axis (the preintegration
 // stage's PREINTEGRATION_TABLE_SIZE).
 constexpr int kPreintegrationTableSize = 256;
+// The light volume of the shadows stage: the volume's dimensions, at most
+// this many voxels on each axis.
+constexpr int kLightVolumeMaxSize = 128;
+glm::ivec3 lightVolumeSize(glm::ivec3 volumeDims);
 
 class IsoRenderer final : public Renderer {
 public:

@@ -2,6 +2,11 @@
 // with the 1D transfer function.
 #include "voxlab/renderers.h"
 
+#include <cstdio>
+
+#include "voxlab/camera.h"
+#include "voxlab/volume.h"
+
 namespace voxlab {
 
 std::string CompositeRenderer::id() const { return "composite"; }
@@ -36,9 +41,15 @@ std::vector<ParameterSpec> CompositeRenderer::parameters() const {
     // Pre-integrated classification (the preintegration stage).
     p.push_back({"preintegrated", ParameterType::Bool, 0, 1, 0,
                  "classify each segment between two samples by a pre-integrated table (fewer samples, no slicing)"});
+    // Shadows from a light volume (the shadows stage).
+    p.push_back({"shadows", ParameterType::Bool, 0, 1, 0,
+                 "dim each lit sample by the transmittance towards the light (a light volume; turn the light "
+                 "away from the view to see them)"});
     for (ParameterSpec& s : shadingParameters(false)) p.push_back(s);
     return p;
 }
+
+glm::ivec3 lightVolumeSize(glm::ivec3 dims) { return glm::min(dims, glm::ivec3(kLightVolumeMaxSize)); }
 
 namespace {
 bool on(const ParameterValues& values, const char* name) {
@@ -57,13 +68,23 @@ EmptySpaceRule CompositeRenderer::emptySpaceRule(const ParameterValues& values) 
 
 // The pre-integration table depends on the transfer function (the engine
 // watches it) and on the segment's length, the step.
-std::vector<Precomputation> CompositeRenderer::precomputations(const Scene& scene, const Volume&,
+std::vector<Precomputation> CompositeRenderer::precomputations(const Scene& scene, const Volume& volume,
                                                                const ParameterValues& values) const {
     std::vector<Precomputation> list;
     if (on(values, "preintegrated"))
         list.push_back({"u_preintegration_table", "precompute/preintegration_table.frag",
                         glm::ivec3(kPreintegrationTableSize, kPreintegrationTableSize, 1), 4,
                         "step=" + std::to_string(scene.step)});
+    if (on(values, "shadows")) {
+        // The light turns with the camera (lighting.glsl): its direction is
+        // fixed by the camera's axes and the two light angles.
+        const Camera cam = Camera::make(scene.camera, volume.extent(), scene.width, scene.height);
+        char key[256];
+        std::snprintf(key, sizeof key, "f=%.7g,%.7g,%.7g r=%.7g,%.7g,%.7g d=%.7g,%.7g,%.7g light=%.7g,%.7g",
+                      cam.forward.x, cam.forward.y, cam.forward.z, cam.right.x, cam.right.y, cam.right.z, cam.down.x,
+                      cam.down.y, cam.down.z, values.at("light_azimuth"), values.at("light_elevation"));
+        list.push_back({"u_light_volume", "precompute/light_volume.frag", lightVolumeSize(volume.dims()), 1, key});
+    }
     return list;
 }
 

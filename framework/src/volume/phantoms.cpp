@@ -163,6 +163,11 @@ double spherePhantomValue(int n, glm::dvec3 p) {
     return std::clamp(0.5 + (spherePhantomRadius(n) - r) / kSpherePhantomWidth, 0.0, 1.0);
 }
 
+double sphereOverSlabValue(int n, glm::dvec3 p) {
+    if (p.z >= 0.10 * n && p.z <= 0.25 * n) return 1.0;
+    return glm::length(p - sphereOverSlabCentre(n)) <= sphereOverSlabRadius(n) ? 0.5 : 0.0;
+}
+
 int ctSignedPhantomValue(int n, glm::dvec3 p) {
     const glm::dvec3 c(n / 2.0);
     const double r = glm::length(p - c);
@@ -185,7 +190,7 @@ double sheppLoganValue(glm::dvec3 q) {
 }
 
 std::vector<std::string> phantomNames() {
-    return {"sphere", "shells", "ct-signed", "marschner-lobb", "shepp-logan", "ramp-x", "ramp-y", "ramp-z"};
+    return {"sphere", "shells", "ct-signed", "marschner-lobb", "shepp-logan", "sphere-over-slab", "ramp-x", "ramp-y", "ramp-z"};
 }
 
 Volume makePhantom(const std::string& spec) {
@@ -225,6 +230,11 @@ Volume makePhantom(const std::string& spec) {
     if (name == "sphere") {
         return floatVolume(spec, n, [&](int i, int j, int k) {
             return spherePhantomValue(n, {centre(i), centre(j), centre(k)});
+        });
+    }
+    if (name == "sphere-over-slab") {
+        return floatVolume(spec, n, [&](int i, int j, int k) {
+            return sphereOverSlabValue(n, {centre(i), centre(j), centre(k)});
         });
     }
     if (name == "shells") return makeShells(spec, n);

@@ -54,9 +54,24 @@ TEST(Phantoms, CtSignedHoldsItsHounsfieldUnits) {
     EXPECT_EQ(v.maxValue(), 700.0);
 }
 
+// The slab and the sphere at the voxel centres the formula puts them.
+TEST(Phantoms, SphereOverSlab) {
+    const Volume v = makePhantom("phantom:sphere-over-slab:40");
+    const auto* f = static_cast<const float*>(v.data());
+    auto at = [&](int i, int j, int k) { return f[i + 40 * (j + 40 * k)]; };
+    EXPECT_EQ(at(0, 0, 4), 1.0f);     // z = 4.5, inside 4..10
+    EXPECT_EQ(at(39, 39, 9), 1.0f);   // z = 9.5
+    EXPECT_EQ(at(20, 20, 10), 0.0f);  // z = 10.5, above the slab
+    EXPECT_EQ(at(20, 20, 24), 0.5f);  // the sphere's centre (20, 20, 24) is on a voxel corner
+    EXPECT_EQ(at(20, 20, 29), 0.5f);  // 5.5 above the centre, radius 6
+    EXPECT_EQ(at(20, 20, 30), 0.0f);  // 6.5 above
+    EXPECT_EQ(at(3, 3, 24), 0.0f);    // beside it
+}
+
 TEST(Phantoms, NamesAndDefaults) {
     std::vector<std::string> names = phantomNames();
-    for (const char* n : {"sphere", "shells", "marschner-lobb", "shepp-logan", "ramp-x", "ramp-y", "ramp-z"}) {
+    for (const char* n : {"sphere", "shells", "marschner-lobb", "shepp-logan", "sphere-over-slab", "ramp-x", "ramp-y",
+                          "ramp-z"}) {
         EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n;
     }
     for (const std::string& n : names) {

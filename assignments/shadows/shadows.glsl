@@ -25,7 +25,8 @@
 // recomputes it when the transfer function, the light direction (which
 // turns with the camera) or the volume changes. The composite renderer,
 // with `shadows` on, then multiplies each lit sample's colour by T read
-// from the light volume at p. The light direction is lighting.glsl's
+// from the light volume one light-volume voxel towards the light from p (so
+// that a sample just under a surface does not read the surface's shadow). The light direction is lighting.glsl's
 // light_direction(), set by `light_azimuth` and `light_elevation`.
 #ifndef VOXLAB_STAGE_SHADOWS_GLSL
 #define VOXLAB_STAGE_SHADOWS_GLSL

@@ -36,6 +36,17 @@ uniform sampler3D u_light_volume;  // transmittance towards the light (shadows)
 
 out vec4 frag_color;
 
+// The light volume's transmittance for a sample at p, read one light-volume
+// voxel towards the light: a sample just under a surface would otherwise
+// read the surface's own shadow, interpolated, and the depth at which each
+// ray first samples the surface would show as rings ("shadow acne"). The
+// shift runs along the light ray, so what shadows p shadows it still.
+float shadow_at(vec3 p) {
+    vec3 texel = u_volume_extent / vec3(textureSize(u_light_volume, 0));
+    vec3 q = p + min(texel.x, min(texel.y, texel.z)) * light_direction();
+    return texture(u_light_volume, q / u_volume_extent).r;
+}
+
 vec4 sample_colour(vec3 p, Ray ray) {
     vec4 c = u_preintegrated != 0 ? classify_preintegrated(p, ray)
              : u_preclassify != 0  ? classify_pre(p)
@@ -43,7 +54,7 @@ vec4 sample_colour(vec3 p, Ray ray) {
     if (u_gradient_opacity != 0 && c.a > 0.0)
         c.a *= gradient_opacity_weight(length(gradient_at(p)), u_gradient_low, u_gradient_high);
     if (c.a > 0.0) c.rgb = shade_sample(c.rgb, p, ray);
-    if (u_shadows != 0 && c.a > 0.0) c.rgb *= texture(u_light_volume, p / u_volume_extent).r;
+    if (u_shadows != 0 && c.a > 0.0) c.rgb *= shadow_at(p);
     if (u_ambient_occlusion != 0 && c.a > 0.0)
         c.rgb *= 1.0 - u_ao_strength * ambient_occlusion(p, u_ao_radius * u_min_spacing);
     return c;

@@ -167,10 +167,10 @@ TEST_F(Shadows, TheSphereShadowsTheSlabByTheTransmittanceAlongLightRays) {
     EXPECT_GT(core, 100) << "too few pixels in the shadow: is the light where the test expects it?";
 }
 
-// The light volume is made again when the light, the transfer function or
-// the volume changes: an engine that rendered something else in between
+// The light volume is made again when the light, the transfer function, its
+// resolution or the volume changes: an engine that rendered something else in between
 // gives the same image as before, and the same as a fresh engine.
-TEST_F(Shadows, TheLightVolumeFollowsTheLightTheTransferFunctionAndTheVolume) {
+TEST_F(Shadows, TheLightVolumeFollowsTheLightTheTransferFunctionItsResolutionAndTheVolume) {
     const Volume volume = makePhantom("phantom:sphere-over-slab:64");
     const Volume other = makePhantom("phantom:sphere-over-slab:48");
     const Scene scene = shadowScene(true);
@@ -182,6 +182,9 @@ TEST_F(Shadows, TheLightVolumeFollowsTheLightTheTransferFunctionAndTheVolume) {
     Scene dimmer = scene;
     dimmer.transferFunction = TransferFunction({{0.0, glm::vec3(1.0f), 0.0f}, {1.0, glm::vec3(1.0f), 0.05f}});
     engine().render(dimmer);
+    Scene coarse = scene;
+    coarse.parameters["shadow_resolution"] = 16.0;
+    engine().render(coarse);
     engine().setVolume(other);
     engine().render(scene);
     engine().setVolume(volume);

@@ -19,7 +19,8 @@
 //
 // A shadow ray per sample of every camera ray would cost hundreds of
 // samples per sample. Instead the framework evaluates your function once
-// per voxel of a light volume (up to 128 voxels on each axis), a 3D texture
+// per voxel of a light volume (`shadow_resolution`, 64 by default, voxels
+// on each axis at most), a 3D texture
 // of T (Behrens and Ratering 1998 build the same thing by slicing; Levoy
 // 1988's two-pass idea): see shaders/precompute/light_volume.frag. It
 // recomputes it when the transfer function, the light direction (which

@@ -80,9 +80,8 @@ public:
 // stage's PREINTEGRATION_TABLE_SIZE).
 constexpr int kPreintegrationTableSize = 256;
 // The light volume of the shadows stage: the volume's dimensions, at most
-// this many voxels on each axis.
-constexpr int kLightVolumeMaxSize = 128;
-glm::ivec3 lightVolumeSize(glm::ivec3 volumeDims);
+// `resolution` voxels on each axis (composite's `shadow_resolution`).
+glm::ivec3 lightVolumeSize(glm::ivec3 volumeDims, int resolution);
 
 class IsoRenderer final : public Renderer {
 public:

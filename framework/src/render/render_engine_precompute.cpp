@@ -25,7 +25,8 @@ constexpr int kMaxPrecomputations = 2;
 std::string fullKey(const Precomputation& what, const ShaderConstants& constants, unsigned long volume,
                     unsigned long tf, unsigned long shaders) {
     std::string key = what.fragmentShader + "|" + what.key + "|v" + std::to_string(volume) + "|t" +
-                      std::to_string(tf) + "|s" + std::to_string(shaders);
+                      std::to_string(tf) + "|s" + std::to_string(shaders) + "|" + std::to_string(what.size.x) + "x" +
+                      std::to_string(what.size.y) + "x" + std::to_string(what.size.z);
     for (const auto& [name, value] : constants) key += "|" + name + "=" + std::to_string(value);
     return key;
 }

@@ -45,11 +45,16 @@ std::vector<ParameterSpec> CompositeRenderer::parameters() const {
     p.push_back({"shadows", ParameterType::Bool, 0, 1, 0,
                  "dim each lit sample by the transmittance towards the light (a light volume; turn the light "
                  "away from the view to see them)"});
+    // The light volume is computed again whenever the camera turns (the
+    // light turns with it): on the bonsai, 64 per axis costs about 0.1 s a
+    // time, 128 about 0.7 s (docs/performance.md).
+    p.push_back({"shadow_resolution", ParameterType::Int, 16, 256, 64,
+                 "shadows: the light volume's voxels along each axis, at most (finer shadows, slower to compute)"});
     for (ParameterSpec& s : shadingParameters(false)) p.push_back(s);
     return p;
 }
 
-glm::ivec3 lightVolumeSize(glm::ivec3 dims) { return glm::min(dims, glm::ivec3(kLightVolumeMaxSize)); }
+glm::ivec3 lightVolumeSize(glm::ivec3 dims, int resolution) { return glm::min(dims, glm::ivec3(resolution)); }
 
 namespace {
 bool on(const ParameterValues& values, const char* name) {
@@ -83,7 +88,7 @@ std::vector<Precomputation> CompositeRenderer::precomputations(const Scene& scen
         std::snprintf(key, sizeof key, "f=%.7g,%.7g,%.7g r=%.7g,%.7g,%.7g d=%.7g,%.7g,%.7g light=%.7g,%.7g",
                       cam.forward.x, cam.forward.y, cam.forward.z, cam.right.x, cam.right.y, cam.right.z, cam.down.x,
                       cam.down.y, cam.down.z, values.at("light_azimuth"), values.at("light_elevation"));
-        list.push_back({"u_light_volume", "precompute/light_volume.frag", lightVolumeSize(volume.dims()), 1, key});
+        list.push_back({"u_light_volume", "precompute/light_volume.frag", lightVolumeSize(volume.dims(), int(values.at("shadow_resolution"))), 1, key});
     }
     return list;
 }

@@ -204,6 +204,24 @@ TEST_F(Shadows, TheLightVolumeFollowsTheLightTheTransferFunctionItsResolutionAnd
     for (std::size_t i = 0; i < ours.rgba.size(); ++i) ASSERT_EQ(ours.rgba[i], freshTurned.rgba[i]);
 }
 
+// One engine draws a pre-integrated scene (a 2D table) and then one with
+// shadows (a 3D light volume) in the same slot: a texture name once bound as
+// 2D cannot become 3D, so the engine must make a new one (it raised
+// GL_INVALID_OPERATION once).
+TEST_F(Shadows, AnEngineSwitchesBetweenPreintegrationAndShadows) {
+    const Volume volume = makePhantom("phantom:sphere-over-slab:64");
+    engine().setVolume(volume);
+    Scene table = shadowScene(false);
+    table.parameters["preintegrated"] = 1.0;
+    EXPECT_NO_THROW(engine().render(table));
+    const Image shadows = engine().render(shadowScene(true));
+    EXPECT_NO_THROW(engine().render(table));
+    RenderEngine fresh;
+    fresh.setVolume(volume);
+    const Image expected = fresh.render(shadowScene(true));
+    for (std::size_t i = 0; i < expected.rgba.size(); ++i) ASSERT_EQ(shadows.rgba[i], expected.rgba[i]);
+}
+
 // Shadows only darken: with them, no pixel of a shaded bonsai is brighter.
 TEST_F(Shadows, ShadowsOnlyDarken) {
     const Volume volume = loadVolume(datasetPath("bonsai.nrrd"));

@@ -197,12 +197,17 @@ double meanDifference(const Image& a, const Image& b) {
     return sum / (3.0 * a.width * a.height);
 }
 
+// One of the stage's grading scenes.
+Scene stageScene(const std::string& file) {
+    return Scene::load(std::string(VOXLAB_SOURCE_DIR) + "/reference/preintegration/scenes/" + file);
+}
+
 struct Closeness {
     double post, preintegrated;
 };
 
 Closeness closenessAtStep4(const std::string& sceneFile) {
-    Scene scene = Scene::load(std::string(VOXLAB_SOURCE_DIR) + "/reference/preintegration/scenes/" + sceneFile);
+    Scene scene = stageScene(sceneFile);
     const Volume volume = loadVolume(scene.dataset);
     GlTest::engine().setVolume(volume);
     scene.step = 0.25;
@@ -223,8 +228,8 @@ TEST_F(Preintegration, AtStep4ItIsTwiceAsCloseToStepQuarterAsPostClassificationO
 }
 
 TEST_F(Preintegration, AtStep4ItIsTwiceAsCloseToStepQuarterAsPostClassificationOnTheTooth) {
-    const Closeness c = closenessAtStep4("tooth_shell_shaded.json");
-    std::printf("tooth (shaded), step 4 vs post-classification at step 0.25: post %.3f, pre-integrated %.3f grey "
+    const Closeness c = closenessAtStep4("tooth_shell.json");
+    std::printf("tooth, step 4 vs post-classification at step 0.25: post %.3f, pre-integrated %.3f grey "
                 "levels (%.2fx)\n",
                 c.post, c.preintegrated, c.post / c.preintegrated);
     EXPECT_GE(c.post, 2.0 * c.preintegrated);
@@ -235,7 +240,7 @@ TEST_F(Preintegration, AtStep4ItIsTwiceAsCloseToStepQuarterAsPostClassificationO
 // near 1, and by at most the light those remaining segments would add
 // (1 - threshold of it).
 TEST_F(Preintegration, ComposesWithEarlyTermination) {
-    Scene scene = Scene::load(std::string(VOXLAB_SOURCE_DIR) + "/reference/preintegration/scenes/bonsai_thin_peaks.json");
+    Scene scene = stageScene("bonsai_thin_peaks.json");
     const Volume volume = loadVolume(scene.dataset);
     engine().setVolume(volume);
     scene.parameters["early_termination"] = 1.0;
@@ -254,7 +259,7 @@ TEST_F(Preintegration, ComposesWithEarlyTermination) {
 // Shading multiplies the segment's colour by the lighting: with ka = 1,
 // kd = ks = 0 the lighting is 1 everywhere and the image is the unshaded one.
 TEST_F(Preintegration, ComposesWithShading) {
-    Scene scene = Scene::load(std::string(VOXLAB_SOURCE_DIR) + "/reference/preintegration/scenes/tooth_shell_shaded.json");
+    Scene scene = stageScene("tooth_shell.json");
     const Volume volume = loadVolume(scene.dataset);
     engine().setVolume(volume);
     scene.parameters["shading"] = 0.0;
@@ -270,7 +275,7 @@ TEST_F(Preintegration, ComposesWithShading) {
 // an engine that rendered something else first gives the same image as a
 // fresh one.
 TEST_F(Preintegration, TheTableFollowsTheTransferFunctionAndTheStep) {
-    Scene scene = Scene::load(std::string(VOXLAB_SOURCE_DIR) + "/reference/preintegration/scenes/bonsai_thin_peaks.json");
+    Scene scene = stageScene("bonsai_thin_peaks.json");
     const Volume volume = loadVolume(scene.dataset);
     Scene other = scene;
     other.step = 2.0;

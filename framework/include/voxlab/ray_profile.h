@@ -17,7 +17,12 @@
 //    opacity-corrected for the step, pre- or post-classified, Phong-shaded
 //    when `shading` is on, composited front to back until the accumulated
 //    opacity reaches `early_termination` (jitter moves the start as the GPU
-//    does, by the same per-pixel hash);
+//    does, by the same per-pixel hash); with the optional stages as their
+//    handouts define them: gradient opacity, ambient occlusion,
+//    pre-integration (each segment integrated in double, where the GPU
+//    interpolates a table) and shadows (each sample's shadow ray followed,
+//    where the GPU interpolates a light volume: they differ where the
+//    transmittance jumps within one light-volume voxel);
 //  - mip, slab_mip, minip, average: running maximum, minimum, mean, shown
 //    through the window or the transfer function;
 //  - firsthit: the first sample at or above `threshold`;

@@ -13,6 +13,7 @@
 #include "voxlab/camera.h"
 #include "voxlab/error.h"
 #include "voxlab/renderer.h"
+#include "voxlab/renderers.h"
 #include "voxlab/transfer_function.h"
 
 namespace voxlab {
@@ -276,29 +277,37 @@ glm::vec3 profilePixel(const RayProfile& profile, const glm::vec3& background) {
     return glm::vec3(profile.result) + (1.0f - profile.result.a) * background;
 }
 
-RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, int py) {
-    if (px < 0 || py < 0 || px >= scene.width || py >= scene.height)
-        throw Error("ray profile: pixel (" + std::to_string(px) + ", " + std::to_string(py) + ") is outside the " +
-                    std::to_string(scene.width) + "x" + std::to_string(scene.height) + " image");
-    const Renderer& renderer = rendererRegistry().get(scene.renderer);
-    const ParameterValues values = renderer.resolveParameters(scene.parameters, volume.valueRange());
-    auto param = [&](const char* name) { return values.at(name); };
+namespace {
 
-    RayProfile profile;
-    profile.px = px, profile.py = py;
-    profile.renderer = renderer.id();
-    profile.stepUnits = scene.step;
-    profile.step = scene.step * volume.minSpacing();
-    profile.model = renderer.profileModel();
-    const bool modelled = profile.model != ProfileModel::None;
+// What the models of the renderers' rays share.
+struct ProfileInputs {
+    const Volume& volume;
+    const Scene& scene;
+    const ParameterValues& values;
+    const VolumeReader& reader;
+    const GradientReader& gradients;
+    const Lighting& lighting;
+    const TransferFunction* tf;  // the scene's, or compositing's fallback; null: grey through the window
+    glm::dvec2 window;
 
-    // The ray through the pixel's centre.
-    const Camera cam = Camera::make(scene.camera, volume.extent(), scene.width, scene.height);
-    cam.ray(px + 0.5, py + 0.5, &profile.origin, &profile.direction);
+    double param(const char* name) const { return values.at(name); }
+    bool on(const char* name) const {
+        const auto it = values.find(name);
+        return it != values.end() && it->second != 0.0;
+    }
+};
+
+void freeze(RayProfile& profile, int from, const glm::vec4& accumulated) {
+    for (std::size_t k = std::size_t(from); k < profile.samples.size(); ++k) profile.samples[k].accumulated = accumulated;
+}
+
+// The ray through the pixel's centre, clipped to the box cropped by the roi
+// (an roi that misses the box leaves nothing), the cutting plane's
+// half-space and the renderer's own clipping. Returns whether any is left.
+bool clipPixelRay(RayProfile& profile, const Renderer& renderer, const Volume& volume, const Scene& scene,
+                  const ParameterValues& values, const Camera& cam) {
+    cam.ray(profile.px + 0.5, profile.py + 0.5, &profile.origin, &profile.direction);
     const glm::dvec3 origin = profile.origin, dir = profile.direction;
-
-    // The sampled region: the box cropped by the roi (an roi that misses the
-    // box leaves nothing), then the renderer's own clipping.
     glm::dvec3 lo(0.0), hi = volume.extent();
     bool empty = false;
     if (scene.roi) {
@@ -317,32 +326,236 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
                                  cut.otherRenderer + "'s");
     }
     if (hits) hits = renderer.clipProfileRay(volume, cam.forward, values, origin, dir, &t0, &t1);
-    profile.hitsVolume = hits;
-    if (!hits) {
-        profile.why = "the ray misses the volume";
-        profile.modelled = modelled;
-        return profile;
-    }
-    if (values.count("jitter") && param("jitter") != 0.0)
-        t0 += (pixelRandom(px, py, scene.height) - 0.5) * profile.step;  // the same start as the GPU's
+    if (!hits) return false;
+    const auto jitter = values.find("jitter");
+    if (jitter != values.end() && jitter->second != 0.0)
+        t0 += (pixelRandom(profile.px, profile.py, scene.height) - 0.5) * profile.step;  // the GPU's start
     profile.tEntry = t0, profile.tExit = t1;
+    return true;
+}
 
-    // The samples: floor(length / step + 1/2) of them, at t_entry + (m + 1/2) step.
-    const VolumeReader reader(volume, scene.interpolation);
-    if (scene.interpolation == Interpolation::Hardware)
-        addNote(profile, "hardware interpolation read as trilinear (the GPU may blend with 8-bit weights)");
+// The samples: floor(length / step + 1/2) of them, at t_entry + (m + 1/2) step.
+void takeSamples(RayProfile& profile, const VolumeReader& reader) {
+    const double t0 = profile.tEntry, t1 = profile.tExit;
     const int count = std::max(0, int(std::floor((t1 - t0) / profile.step + 0.5)));
-    profile.samples.resize(count);
+    profile.samples.resize(std::size_t(count));
     double maximum = -std::numeric_limits<double>::infinity(), minimum = -maximum, sum = 0.0;
     for (int m = 0; m < count; ++m) {
-        RaySample& s = profile.samples[m];
+        RaySample& s = profile.samples[std::size_t(m)];
         s.t = t0 + (m + 0.5) * profile.step;
-        s.position = origin + s.t * dir;
+        s.position = profile.origin + s.t * profile.direction;
         s.value = reader.sample(s.position);
         maximum = std::max(maximum, s.value), minimum = std::min(minimum, s.value), sum += s.value;
         s.runningMax = maximum, s.runningMin = minimum, s.runningMean = sum / (m + 1);
     }
+}
 
+// Pre-classification: the 8 voxels around p classified, their
+// opacity-weighted colours blended (nearest: the one voxel).
+glm::dvec4 classifyPre(const ProfileInputs& in, const glm::dvec3& p) {
+    auto classifyVoxel = [&](glm::ivec3 ijk) { return glm::dvec4(in.tf->evaluate(in.reader.voxel(ijk))); };
+    if (in.scene.interpolation == Interpolation::Nearest)
+        return classifyVoxel(glm::ivec3(glm::floor(in.reader.voxelCoordinates(p))));
+    const glm::dvec3 u = in.reader.voxelCoordinates(p) - 0.5;
+    const glm::dvec3 lower = glm::floor(u), w = u - lower;
+    glm::dvec4 acc(0.0);
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::ivec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+        const double weight = (o.x ? w.x : 1.0 - w.x) * (o.y ? w.y : 1.0 - w.y) * (o.z ? w.z : 1.0 - w.z);
+        acc += weight * premultiply(classifyVoxel(glm::ivec3(lower) + o));
+    }
+    return acc.a > 0.0 ? glm::dvec4(glm::dvec3(acc) / acc.a, acc.a) : glm::dvec4(0.0);
+}
+
+// Pre-integration (the preintegration stage's handout): the segment from
+// `front` to `back`, `length` unit lengths, integrated in double with 1024
+// pieces (the GPU reads a 256x256 table of fewer). Returns its colour (not
+// premultiplied) and its opacity per unit length, as the stage hands them
+// to the compositing loop.
+glm::dvec4 preintegratedSegment(const TransferFunction& tf, double front, double back, double length) {
+    constexpr int kPieces = 1024;
+    glm::dvec3 colour(0.0);
+    double opacity = 0.0;
+    for (int k = 0; k < kPieces; ++k) {
+        const glm::dvec4 c(tf.evaluate(front + (back - front) * (k + 0.5) / kPieces));
+        const double a = 1.0 - std::pow(1.0 - std::clamp(c.a, 0.0, 1.0), length / kPieces);
+        colour += (1.0 - opacity) * a * glm::dvec3(c);
+        opacity += (1.0 - opacity) * a;
+    }
+    if (opacity <= 0.0) return glm::dvec4(0.0);
+    return {colour / opacity, 1.0 - std::pow(std::max(1.0 - opacity, 0.0), 1.0 / length)};
+}
+
+// Shadows (the shadows stage's handout): the transmittance along the shadow
+// ray from p, sampled every light-volume voxel, starting one such voxel
+// towards the light as composite.frag reads the light volume. The GPU
+// interpolates a light volume of these; here the ray is followed itself.
+double shadowTransmittance(const ProfileInputs& in, const glm::dvec3& p) {
+    const glm::ivec3 size = lightVolumeSize(in.volume.dims(), int(in.param("shadow_resolution")));
+    const glm::dvec3 texel = in.volume.extent() / glm::dvec3(size);
+    const double step = std::min({texel.x, texel.y, texel.z});
+    const glm::dvec3 light = in.lighting.light, start = p + step * light;
+    double transmittance = 1.0;
+    for (int k = 1; transmittance > 1e-3; ++k) {
+        const glm::dvec3 q = start + double(k) * step * light;
+        if (glm::any(glm::lessThan(q, glm::dvec3(0.0))) || glm::any(glm::greaterThan(q, in.volume.extent()))) break;
+        const double alpha = std::clamp(double(in.tf->evaluate(in.reader.sample(q)).a), 0.0, 1.0);
+        transmittance *= std::pow(1.0 - alpha, step / in.volume.minSpacing());
+    }
+    return transmittance;
+}
+
+// One sample of the composite renderer, as composite.frag makes it: its
+// colour (rgb, lit) and opacity per unit length.
+glm::dvec4 compositeSample(const ProfileInputs& in, const RaySample& s, const glm::dvec3& dir, double step) {
+    glm::dvec4 c;
+    if (in.on("preintegrated"))
+        c = preintegratedSegment(*in.tf, s.value, in.reader.sample(s.position + step * dir), in.scene.step);
+    else
+        c = in.on("preclassify") ? classifyPre(in, s.position) : glm::dvec4(in.tf->evaluate(s.value));
+    if (c.a > 0.0 && in.on("gradient_opacity"))  // the gradient_opacity stage's ramp (its handout)
+        c.a *= rampWeight(glm::length(in.gradients.at(s.position)), in.param("gradient_low"), in.param("gradient_high"));
+    if (c.a > 0.0 && in.lighting.on)
+        c = glm::dvec4(in.lighting.shade(glm::dvec3(c), in.gradients.at(s.position), dir), c.a);
+    if (c.a > 0.0 && in.on("shadows")) c = glm::dvec4(glm::dvec3(c) * shadowTransmittance(in, s.position), c.a);
+    if (c.a > 0.0 && in.on("ambient_occlusion")) {  // the ambient_occlusion stage (its handout)
+        const double o = localOcclusion(in.reader, *in.tf, s.position, in.param("ao_radius") * in.volume.minSpacing());
+        c = glm::dvec4(glm::dvec3(c) * (1.0 - in.param("ao_strength") * o), c.a);
+    }
+    return c;
+}
+
+void profileComposite(RayProfile& profile, const ProfileInputs& in) {
+    const bool backToFront = in.on("back_to_front");
+    profile.earlyTermination = backToFront ? 1.0 : in.param("early_termination");
+    glm::dvec3 colour(0.0);
+    double opacity = 0.0;
+    for (std::size_t m = 0; m < profile.samples.size(); ++m) {
+        RaySample& s = profile.samples[m];
+        const glm::dvec4 c = compositeSample(in, s, profile.direction, profile.step);
+        // Opacity per unit length, corrected for a step of stepUnits units.
+        const double a = 1.0 - std::pow(1.0 - std::clamp(c.a, 0.0, 1.0), in.scene.step);
+        s.classified = glm::vec4(glm::vec3(c), float(a));
+        if (profile.stoppedAt >= 0) continue;  // past the stop: classified, not composited
+        colour += (1.0 - opacity) * a * glm::dvec3(c);
+        opacity += (1.0 - opacity) * a;
+        s.accumulated = glm::vec4(glm::vec3(colour), float(opacity));
+        if (!backToFront && opacity >= profile.earlyTermination) {
+            profile.stoppedAt = int(m);
+            profile.why = format("early ray termination: accumulated opacity %.3f >= %g", opacity, profile.earlyTermination);
+            freeze(profile, int(m) + 1, s.accumulated);
+        }
+    }
+    profile.result = glm::vec4(glm::vec3(colour), float(opacity));
+    if (profile.stoppedAt < 0)
+        profile.why = backToFront ? "the ray left the volume (back to front: no early termination)" : "the ray left the volume";
+    if (in.lighting.on && in.on("precomputed_gradients"))
+        addNote(profile, "precomputed gradients blended in double (the GPU filters a float texture)");
+    if (in.on("preintegrated"))
+        addNote(profile, "pre-integrated segments integrated in double (the GPU interpolates a 256x256 table)");
+    if (in.on("shadows"))
+        addNote(profile, "shadows: each sample's shadow ray followed itself (the GPU interpolates a light volume)");
+}
+
+// mip, slab_mip, minip, average: the running maximum, minimum or mean.
+void profileProjection(RayProfile& profile, const ProfileInputs& in) {
+    const bool isMin = profile.model == ProfileModel::Minimum, isMean = profile.model == ProfileModel::Mean;
+    for (std::size_t m = 0; m < profile.samples.size(); ++m) {
+        RaySample& s = profile.samples[m];
+        s.accumulated = glm::vec4(premultiply(displayColour(isMean ? s.runningMean : isMin ? s.runningMin : s.runningMax,
+                                                            in.window, in.tf)));
+        const double extreme = isMin ? s.runningMin : s.runningMax;
+        const bool newExtreme = profile.chosen < 0 || extreme != profile.samples[std::size_t(profile.chosen)].value;
+        if (!isMean && s.value == extreme && newExtreme) profile.chosen = int(m);  // the first to reach it
+    }
+    if (profile.samples.empty()) {
+        profile.why = "the ray crosses less than half a step of the volume: no sample";
+        return;
+    }
+    profile.result = profile.samples.back().accumulated;
+    profile.why = "the ray left the volume";
+}
+
+void profileFirstHit(RayProfile& profile, const ProfileInputs& in) {
+    profile.threshold = in.param("threshold"), profile.hasThreshold = true;
+    for (std::size_t m = 0; m < profile.samples.size() && profile.stoppedAt < 0; ++m) {
+        const RaySample& s = profile.samples[m];
+        if (s.value < profile.threshold) continue;
+        profile.stoppedAt = profile.chosen = int(m);
+        profile.hitT = s.t;
+        profile.why = format("first hit: value %g >= threshold %g", s.value, profile.threshold);
+        const double grey = depthGrey(profile.origin, profile.direction, in.volume.extent(), s.t);
+        profile.result = in.on("depth") ? glm::vec4(glm::vec3(float(grey)), 1.0f)
+                                        : glm::vec4(premultiply(displayColour(s.value, in.window, in.tf)));
+        freeze(profile, int(m), profile.result);
+    }
+    if (profile.stoppedAt < 0)
+        profile.why = format("the ray left the volume (no sample reached threshold %g)", profile.threshold);
+}
+
+// iso: value - isovalue changes sign between two samples (a value equal to
+// the isovalue counts as above); bisection narrows the interval.
+void profileIsosurface(RayProfile& profile, const ProfileInputs& in) {
+    profile.threshold = in.param("isovalue"), profile.hasThreshold = true;
+    const double iso = profile.threshold;
+    const int refinements = int(in.param("refinement_steps"));
+    const glm::dvec3 origin = profile.origin, dir = profile.direction;
+    for (std::size_t m = 0; m < profile.samples.size() && profile.stoppedAt < 0; ++m) {
+        const RaySample& s = profile.samples[m];
+        const bool above = s.value - iso >= 0.0;
+        if (m == 0 && above) {
+            profile.hitT = s.t;
+            profile.why = format("the ray starts inside the surface: sample 0 has value %g >= isovalue %g", s.value, iso);
+        } else if (m > 0 && (profile.samples[m - 1].value - iso >= 0.0) != above) {
+            double tLo = profile.samples[m - 1].t, tHi = s.t;
+            const bool loAbove = !above;
+            for (int k = 0; k < refinements; ++k) {
+                const double mid = 0.5 * (tLo + tHi);
+                if ((in.reader.sample(origin + mid * dir) - iso >= 0.0) == loAbove) tLo = mid;
+                else tHi = mid;
+            }
+            profile.hitT = refinements > 0 ? 0.5 * (tLo + tHi) : s.t;
+            profile.why = "isovalue crossed between samples " + std::to_string(m - 1) + " and " + std::to_string(m);
+        } else {
+            continue;
+        }
+        profile.stoppedAt = profile.chosen = int(m);
+        glm::dvec3 colour(in.param("color_r"), in.param("color_g"), in.param("color_b"));
+        if (in.on("depth")) colour = glm::dvec3(depthGrey(origin, dir, in.volume.extent(), profile.hitT));
+        else if (in.lighting.on) colour = in.lighting.shade(colour, in.gradients.at(origin + profile.hitT * dir), dir);
+        profile.result = glm::vec4(glm::vec3(colour), 1.0f);
+        freeze(profile, int(m), profile.result);
+    }
+    if (profile.stoppedAt < 0) profile.why = format("the ray left the volume (the isovalue %g is never crossed)", iso);
+}
+
+}  // namespace
+
+RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, int py) {
+    if (px < 0 || py < 0 || px >= scene.width || py >= scene.height)
+        throw Error("ray profile: pixel (" + std::to_string(px) + ", " + std::to_string(py) + ") is outside the " +
+                    std::to_string(scene.width) + "x" + std::to_string(scene.height) + " image");
+    const Renderer& renderer = rendererRegistry().get(scene.renderer);
+    const ParameterValues values = renderer.resolveParameters(scene.parameters, volume.valueRange());
+
+    RayProfile profile;
+    profile.px = px, profile.py = py;
+    profile.renderer = renderer.id();
+    profile.stepUnits = scene.step;
+    profile.step = scene.step * volume.minSpacing();
+    profile.model = renderer.profileModel();
+    const bool modelled = profile.model != ProfileModel::None;
+    const Camera cam = Camera::make(scene.camera, volume.extent(), scene.width, scene.height);
+    profile.hitsVolume = clipPixelRay(profile, renderer, volume, scene, values, cam);
+    if (!profile.hitsVolume) {
+        profile.why = "the ray misses the volume";
+        profile.modelled = modelled;
+        return profile;
+    }
+    const VolumeReader reader(volume, scene.interpolation);
+    if (scene.interpolation == Interpolation::Hardware)
+        addNote(profile, "hardware interpolation read as trilinear (the GPU may blend with 8-bit weights)");
+    takeSamples(profile, reader);
     if (!modelled) {
         profile.why = "not modelled for " + profile.renderer;
         return profile;
@@ -357,155 +570,22 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
     std::optional<TransferFunction> tf = scene.transferFunction;
     if (!tf && renderer.needsTransferFunction())
         tf = TransferFunction({{window.x, glm::vec3(1.0f), 0.0f}, {window.y, glm::vec3(1.0f), 0.1f}});
-    const TransferFunction* tfp = tf ? &*tf : nullptr;
     const Lighting lighting(values, cam, range.y - range.x);
-    const auto gradientParam = [&](const char* name) {
+    auto flag = [&](const char* name) {
         const auto it = values.find(name);
         return it != values.end() && it->second != 0.0;
     };
-    const GradientReader gradients(reader, gradientParam("sobel"), gradientParam("precomputed_gradients"));
-    const auto freeze = [&](int from, const glm::vec4& acc) {
-        for (int k = from; k < count; ++k) profile.samples[k].accumulated = acc;
-    };
+    const GradientReader gradients(reader, flag("sobel"), flag("precomputed_gradients"));
+    const ProfileInputs in{volume, scene, values, reader, gradients, lighting, tf ? &*tf : nullptr, window};
 
-    if (profile.model == ProfileModel::Composite) {
-        const bool preclassify = param("preclassify") != 0.0, backToFront = param("back_to_front") != 0.0;
-        const bool gradientOpacity = param("gradient_opacity") != 0.0;
-        const bool ambientOcclusion = param("ambient_occlusion") != 0.0;
-        auto occlusion = [&](const glm::dvec3& p) {
-            return localOcclusion(reader, *tf, p, param("ao_radius") * volume.minSpacing());
-        };
-        profile.earlyTermination = backToFront ? 1.0 : param("early_termination");
-        auto classifyVoxel = [&](glm::ivec3 ijk) { return glm::dvec4(tf->evaluate(reader.voxel(ijk))); };
-        // Pre-classification: the 8 voxels around p classified, their
-        // opacity-weighted colours blended (nearest: the one voxel).
-        auto classifyPre = [&](const glm::dvec3& p) {
-            if (scene.interpolation == Interpolation::Nearest)
-                return classifyVoxel(glm::ivec3(glm::floor(reader.voxelCoordinates(p))));
-            const glm::dvec3 u = reader.voxelCoordinates(p) - 0.5;
-            const glm::dvec3 lower = glm::floor(u), w = u - lower;
-            glm::dvec4 acc(0.0);
-            for (int corner = 0; corner < 8; ++corner) {
-                const glm::ivec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-                const double weight = (o.x ? w.x : 1.0 - w.x) * (o.y ? w.y : 1.0 - w.y) * (o.z ? w.z : 1.0 - w.z);
-                acc += weight * premultiply(classifyVoxel(glm::ivec3(lower) + o));
-            }
-            return acc.a > 0.0 ? glm::dvec4(glm::dvec3(acc) / acc.a, acc.a) : glm::dvec4(0.0);
-        };
-        glm::dvec3 colour(0.0);
-        double opacity = 0.0;
-        for (int m = 0; m < count; ++m) {
-            RaySample& s = profile.samples[m];
-            glm::dvec4 c = preclassify ? classifyPre(s.position) : glm::dvec4(tf->evaluate(s.value));
-            if (c.a > 0.0 && gradientOpacity)  // the gradient_opacity stage's ramp (its handout)
-                c.a *= rampWeight(glm::length(gradients.at(s.position)), param("gradient_low"), param("gradient_high"));
-            if (c.a > 0.0 && lighting.on)
-                c = glm::dvec4(lighting.shade(glm::dvec3(c), gradients.at(s.position), dir), c.a);
-            if (c.a > 0.0 && ambientOcclusion)  // the ambient_occlusion stage (its handout)
-                c = glm::dvec4(glm::dvec3(c) * (1.0 - param("ao_strength") * occlusion(s.position)), c.a);
-            // Opacity per unit length, corrected for a step of stepUnits units.
-            const double a = 1.0 - std::pow(1.0 - std::clamp(c.a, 0.0, 1.0), scene.step);
-            s.classified = glm::vec4(glm::vec3(c), float(a));
-            if (profile.stoppedAt >= 0) continue;  // past the stop: classified, not composited
-            colour += (1.0 - opacity) * a * glm::dvec3(c);
-            opacity += (1.0 - opacity) * a;
-            s.accumulated = glm::vec4(glm::vec3(colour), float(opacity));
-            if (!backToFront && opacity >= profile.earlyTermination) {
-                profile.stoppedAt = m;
-                profile.why = format("early ray termination: accumulated opacity %.3f >= %g", opacity,
-                                     profile.earlyTermination);
-                freeze(m + 1, s.accumulated);
-            }
-        }
-        profile.result = glm::vec4(glm::vec3(colour), float(opacity));
-        if (profile.stoppedAt < 0)
-            profile.why = backToFront ? "the ray left the volume (back to front: no early termination)"
-                                      : "the ray left the volume";
-        if (lighting.on && gradientParam("precomputed_gradients"))
-            addNote(profile, "precomputed gradients blended in double (the GPU filters a float texture)");
-        return profile;
+    switch (profile.model) {
+        case ProfileModel::Composite: profileComposite(profile, in); break;
+        case ProfileModel::FirstHit: profileFirstHit(profile, in); break;
+        case ProfileModel::Isosurface: profileIsosurface(profile, in); break;
+        default:  // Maximum, Minimum, Mean
+            for (RaySample& s : profile.samples) s.classified = glm::vec4(displayColour(s.value, window, in.tf));
+            profileProjection(profile, in);
     }
-
-    // The projection renderers: each sample alone, and the running result,
-    // shown the way the pixel would show it.
-    const bool isProjection = profile.model != ProfileModel::Isosurface;
-    if (isProjection)
-        for (RaySample& s : profile.samples) s.classified = glm::vec4(displayColour(s.value, window, tfp));
-    auto shown = [&](double value) { return glm::vec4(premultiply(displayColour(value, window, tfp))); };
-
-    if (profile.model == ProfileModel::Maximum || profile.model == ProfileModel::Minimum ||
-        profile.model == ProfileModel::Mean) {
-        const bool isMin = profile.model == ProfileModel::Minimum, isMean = profile.model == ProfileModel::Mean;
-        for (int m = 0; m < count; ++m) {
-            RaySample& s = profile.samples[m];
-            s.accumulated = shown(isMean ? s.runningMean : isMin ? s.runningMin : s.runningMax);
-            const double extreme = isMin ? s.runningMin : s.runningMax;
-            const bool newExtreme = profile.chosen < 0 || extreme != profile.samples[profile.chosen].value;
-            if (!isMean && s.value == extreme && newExtreme) profile.chosen = m;  // the first to reach the extreme
-        }
-        if (count == 0) {
-            profile.why = "the ray crosses less than half a step of the volume: no sample";
-            return profile;
-        }
-        profile.result = profile.samples.back().accumulated;
-        profile.why = "the ray left the volume";
-        return profile;
-    }
-
-    const bool depth = param("depth") != 0.0;
-    if (profile.model == ProfileModel::FirstHit) {
-        profile.threshold = param("threshold"), profile.hasThreshold = true;
-        for (int m = 0; m < count && profile.stoppedAt < 0; ++m) {
-            const RaySample& s = profile.samples[m];
-            if (s.value < profile.threshold) continue;
-            profile.stoppedAt = profile.chosen = m;
-            profile.hitT = s.t;
-            profile.why = format("first hit: value %g >= threshold %g", s.value, profile.threshold);
-            const double grey = depthGrey(origin, dir, volume.extent(), s.t);
-            profile.result = depth ? glm::vec4(glm::vec3(float(grey)), 1.0f) : shown(s.value);
-            freeze(m, profile.result);
-        }
-        if (profile.stoppedAt < 0)
-            profile.why = format("the ray left the volume (no sample reached threshold %g)", profile.threshold);
-        return profile;
-    }
-
-    // iso: value - isovalue changes sign between two samples (a value equal
-    // to the isovalue counts as above); bisection narrows the interval.
-    profile.threshold = param("isovalue"), profile.hasThreshold = true;
-    const double iso = profile.threshold;
-    const int refinements = int(param("refinement_steps"));
-    for (int m = 0; m < count && profile.stoppedAt < 0; ++m) {
-        const RaySample& s = profile.samples[m];
-        const bool above = s.value - iso >= 0.0;
-        if (m == 0 && above) {
-            profile.hitT = s.t;
-            profile.why =
-                format("the ray starts inside the surface: sample 0 has value %g >= isovalue %g", s.value, iso);
-        } else if (m > 0 && (profile.samples[m - 1].value - iso >= 0.0) != above) {
-            double tLo = profile.samples[m - 1].t, tHi = s.t;
-            bool loAbove = !above;
-            for (int k = 0; k < refinements; ++k) {
-                const double mid = 0.5 * (tLo + tHi);
-                const bool midAbove = reader.sample(origin + mid * dir) - iso >= 0.0;
-                if (midAbove == loAbove) tLo = mid;
-                else tHi = mid;
-            }
-            profile.hitT = refinements > 0 ? 0.5 * (tLo + tHi) : s.t;
-            profile.why = "isovalue crossed between samples " + std::to_string(m - 1) + " and " + std::to_string(m);
-        } else {
-            continue;
-        }
-        profile.stoppedAt = profile.chosen = m;
-        const glm::dvec3 hit = origin + profile.hitT * dir;
-        glm::dvec3 colour(param("color_r"), param("color_g"), param("color_b"));
-        if (depth) colour = glm::dvec3(depthGrey(origin, dir, volume.extent(), profile.hitT));
-        else if (lighting.on) colour = lighting.shade(colour, gradients.at(hit), dir);
-        profile.result = glm::vec4(glm::vec3(colour), 1.0f);
-        freeze(m, profile.result);
-    }
-    if (profile.stoppedAt < 0)
-        profile.why = format("the ray left the volume (the isovalue %g is never crossed)", iso);
     return profile;
 }
 

@@ -1,5 +1,6 @@
 // voxlab CLI: scene-building options shared by `render` and `view`. Flags
 // override the scene file, key by key.
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 
@@ -12,7 +13,7 @@ namespace voxlab::cli {
 
 std::vector<OptionSpec> sceneOptions() {
     return {
-        {"dataset", "PATH|phantom:NAME[:N]", "volume file (.nrrd .nhdr .fld .dat) or built-in phantom"},
+        {"dataset", "PATH|phantom:NAME[:N]", "volume file (.nrrd .nhdr .fld .dat), DICOM series folder or built-in phantom"},
         {"renderer", "ID", "renderer id (see voxlab list)"},
         {"view", "AXIS", "axis view: +x -x +y -y +z -z (rays travel along it)"},
         {"azimuth", "DEG", "orbit camera azimuth (0 = +z view, 90 = +x view)"},
@@ -36,6 +37,16 @@ std::vector<OptionSpec> sceneOptions() {
         {"cut-renderer", "ID|none", "cutting plane: renderer of the other side (default: none, invisible)"},
         {"cut-tf", "FILE", "cutting plane: transfer function of the other side"},
         {"cut-param", "NAME=VALUE", "cutting plane: a parameter of the other side's renderer (repeatable)"},
+        {"clip-plane", "X,Y,Z,NX,NY,NZ", "keep the side of the plane through voxel point X,Y,Z that NX,NY,NZ points into (repeatable, up to 6)"},
+        {"labels", "FILE", "label map on the dataset's grid: each label shown by its own transfer function (composite)"},
+        {"label-tf", "LABEL=FILE", "labels: the transfer function of one label (repeatable)"},
+        {"hide-label", "LABEL", "labels: hide one label (repeatable)"},
+        {"label-sampling", "nearest|masks", "labels: the voxel's label, or each label's mask interpolated (smooth borders)"},
+        {"label-distance", "LABEL=FILE", "labels: colour the other labels by their distance to LABEL through this transfer function (world units)"},
+        {"fuse", "PATH", "a second volume over the same box, fused with the first (composite)"},
+        {"fusion-mode", "MODE", "checkerboard, split, color_opacity or sum (default)"},
+        {"fusion-tf", "FILE", "the second volume's transfer function"},
+        {"fusion-window", "LO,HI", "the second volume's window (its default ramp)"},
         volumeCapOption(),
     };
 }
@@ -58,6 +69,14 @@ void applyVolumeCapOption(const Args& args) {
 std::string defaultScenePath() { return projectRoot() + "/datasets/scenes/default.json"; }
 
 namespace {
+
+int parseLabel(const std::string& text, const std::string& option) {
+    const double v = parseNumber(text, "--" + option);
+    if (!(v >= 0.0 && v <= kMaxLabel && v == std::floor(v)))
+        throw Error("option --" + option + ": expected a label, a whole number in 0.." + std::to_string(kMaxLabel) +
+                    ", got '" + text + "'");
+    return int(v);
+}
 
 void parseSize(const std::string& text, Scene* scene) {
     const std::size_t x = text.find('x');
@@ -99,6 +118,80 @@ void parseCuttingPlane(const Args& args, Scene* scene) {
     if (auto v = args.get("cut-renderer")) cut.otherRenderer = *v;
     if (auto v = args.get("cut-tf")) cut.otherTransferFunction = TransferFunction::load(resolveDataPath(*v));
     for (const std::string& p : args.getAll("cut-param")) parseParam(p, "cut-param", &cut.otherParameters);
+}
+
+// "LABEL=FILE": a label and a transfer function.
+std::pair<int, TransferFunction> labelFunction(const std::string& text, const std::string& option) {
+    const std::size_t eq = text.find('=');
+    if (eq == std::string::npos) throw Error("option --" + option + ": expected LABEL=FILE, got '" + text + "'");
+    return {parseLabel(text.substr(0, eq), option), TransferFunction::load(resolveDataPath(text.substr(eq + 1)))};
+}
+
+LabelClass& labelClass(LabelMap* map, int label) {
+    for (LabelClass& c : map->classes)
+        if (c.label == label) return c;
+    if (map->classes.size() >= kMaxLabelClasses)
+        throw Error("labels: at most " + std::to_string(kMaxLabelClasses) + " classes");
+    map->classes.push_back(LabelClass{label, "", std::nullopt, true});
+    return map->classes.back();
+}
+
+void parseLabels(const Args& args, Scene* scene) {
+    if (auto v = args.get("labels")) {
+        if (!scene->labels) scene->labels.emplace();
+        scene->labels->volume = resolveDataPath(*v);
+    }
+    const bool any = args.has("label-tf") || args.has("hide-label") || args.has("label-sampling") ||
+                     args.has("label-distance");
+    if (!any) return;
+    if (!scene->labels) throw Error("option --label-*: needs a label map (--labels FILE, or a scene with \"labels\")");
+    LabelMap& map = *scene->labels;
+    for (const std::string& t : args.getAll("label-tf")) {
+        auto [label, function] = labelFunction(t, "label-tf");
+        labelClass(&map, label).transferFunction = function;
+    }
+    for (const std::string& t : args.getAll("hide-label")) labelClass(&map, parseLabel(t, "hide-label")).visible = false;
+    if (auto v = args.get("label-sampling")) {
+        if (*v != "nearest" && *v != "masks")
+            throw Error("option --label-sampling: expected nearest or masks, got '" + *v + "'");
+        map.sampling = *v == "masks" ? LabelSampling::Masks : LabelSampling::Nearest;
+    }
+    if (auto v = args.get("label-distance")) {
+        auto [label, function] = labelFunction(*v, "label-distance");
+        if (function.empty()) throw Error("option --label-distance: the transfer function has no points");
+        map.distance = LabelDistance{label, function, {}};
+    }
+}
+
+void parseFusion(const Args& args, Scene* scene) {
+    if (auto v = args.get("fuse")) {
+        if (!scene->fusion) scene->fusion.emplace();
+        scene->fusion->dataset = resolveDataPath(*v);
+    }
+    if (!args.has("fusion-mode") && !args.has("fusion-tf") && !args.has("fusion-window")) return;
+    if (!scene->fusion) throw Error("option --fusion-*: needs a second volume (--fuse PATH, or a scene with \"fusion\")");
+    Fusion& f = *scene->fusion;
+    if (auto v = args.get("fusion-mode")) f.mode = parseFusionMode(*v);
+    if (auto v = args.get("fusion-tf")) f.transferFunction = TransferFunction::load(resolveDataPath(*v));
+    if (auto v = args.get("fusion-window")) {
+        const auto w = parseNumberList(*v, "--fusion-window", 2);
+        if (!(w[1] > w[0])) throw Error("option --fusion-window: HI must be greater than LO");
+        f.window = glm::dvec2(w[0], w[1]);
+    }
+}
+
+void parseClipPlanes(const Args& args, Scene* scene) {
+    const std::vector<std::string> planes = args.getAll("clip-plane");
+    if (planes.empty()) return;
+    scene->clipPlanes.clear();  // the command line's planes replace the scene's
+    if (planes.size() > kMaxClipPlanes)
+        throw Error("option --clip-plane: at most " + std::to_string(kMaxClipPlanes) + " planes");
+    for (const std::string& text : planes) {
+        const auto v = parseNumberList(text, "--clip-plane", 6);
+        const ClipPlane plane{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+        if (glm::length(plane.normal) <= 0.0) throw Error("option --clip-plane: the normal must not be zero");
+        scene->clipPlanes.push_back(plane);
+    }
 }
 
 }  // namespace
@@ -162,6 +255,9 @@ Scene sceneFromArgs(const Args& args, const std::string& command, const Scene* b
             if (!(r[3 + k] > r[k])) throw Error("option --roi: X1,Y1,Z1 must be greater than X0,Y0,Z0");
     }
     parseCuttingPlane(args, &scene);
+    parseClipPlanes(args, &scene);
+    parseLabels(args, &scene);
+    parseFusion(args, &scene);
     if (scene.camera.fov <= 0.0 || scene.camera.fov >= 180.0) throw Error(command + ": --fov must be in (0, 180)");
     if (scene.camera.zoom <= 0.0) throw Error(command + ": --zoom must be positive");
     return scene;

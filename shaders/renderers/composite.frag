@@ -17,6 +17,8 @@
 #include "ambient_occlusion/ambient_occlusion.glsl"
 #include "preintegration/preintegration.glsl"
 #include "shadows/shadows.glsl"
+#include "labels/labels.glsl"
+#include "voxlab/fusion.glsl"
 #define RUN_FRONT_TO_BACK composite_front_to_back
 #define RUN_BACK_TO_FRONT composite_back_to_front
 #include "voxlab/runs.glsl"
@@ -33,6 +35,8 @@ uniform float u_ao_radius;
 uniform float u_ao_strength;
 uniform int u_shadows;
 uniform sampler3D u_light_volume;  // transmittance towards the light (shadows)
+uniform int u_labelled;  // the scene has a label map
+uniform int u_fused;     // the scene has a second volume
 
 out vec4 frag_color;
 
@@ -48,9 +52,16 @@ float shadow_at(vec3 p) {
 }
 
 vec4 sample_colour(vec3 p, Ray ray) {
-    vec4 c = u_preintegrated != 0 ? classify_preintegrated(p, ray)
-             : u_preclassify != 0  ? classify_pre(p)
-                                   : classify_post(p);
+    vec4 c;
+    if (u_labelled != 0) {
+        c = classify_labelled(p);
+        if (u_label_distance_on != 0 && c.a > 0.0) c = apply_label_distance(c, label_at(p), p);
+    } else {
+        c = u_preintegrated != 0 ? classify_preintegrated(p, ray)
+            : u_preclassify != 0 ? classify_pre(p)
+                                 : classify_post(p);
+        if (u_fused != 0) c = classify_fused(p, c);
+    }
     if (u_gradient_opacity != 0 && c.a > 0.0)
         c.a *= gradient_opacity_weight(length(gradient_at(p)), u_gradient_low, u_gradient_high);
     if (c.a > 0.0) c.rgb = shade_sample(c.rgb, p, ray);

@@ -8,8 +8,9 @@
 //    floor(L / u_step + 1/2) samples;
 //  - u_step is in world units (the scene's step times the smallest spacing);
 //  - the region a renderer may sample is the volume's box, cropped by the
-//    scene's region of interest (u_roi_min..u_roi_max, world units) and,
-//    while a cutting plane is drawn, by one half-space of that plane.
+//    scene's region of interest (u_roi_min..u_roi_max, world units), by the
+//    half-space each of the scene's clip planes keeps and, while a cutting
+//    plane is drawn, by one half-space of that plane.
 #ifndef VOXLAB_RAY_GLSL
 #define VOXLAB_RAY_GLSL
 
@@ -30,6 +31,9 @@ uniform vec3 u_roi_max;
 uniform int u_clip_plane;    // 1: keep only dot(p - u_clip_point, u_clip_normal) >= 0
 uniform vec3 u_clip_point;
 uniform vec3 u_clip_normal;
+uniform int u_clip_plane_count;  // the scene's clip planes (0..6), each keeping
+uniform vec3 u_clip_plane_points[6];   // dot(p - point, normal) >= 0
+uniform vec3 u_clip_plane_normals[6];
 
 struct Ray {
     vec3 origin;
@@ -76,9 +80,12 @@ bool clip_ray(inout Ray ray, vec3 lo, vec3 hi) {
 #include "cutting_plane/cutting_plane.glsl"
 
 // Clips the ray to the region this renderer samples: the region of interest
-// (which lies inside the volume's box) and the cutting plane's half-space.
+// (which lies inside the volume's box), the clip planes' half-spaces and the
+// cutting plane's.
 bool clip_to_volume(inout Ray ray) {
     if (!clip_ray(ray, u_roi_min, u_roi_max)) return false;
+    for (int i = 0; i < u_clip_plane_count; ++i)
+        if (!clip_to_half_space(ray, u_clip_plane_points[i], u_clip_plane_normals[i])) return false;
     if (u_clip_plane != 0 && !clip_to_half_space(ray, u_clip_point, u_clip_normal)) return false;
     return true;
 }
@@ -86,6 +93,8 @@ bool clip_to_volume(inout Ray ray) {
 // Whether a point lies in that region (for renderers that do not march).
 bool inside_region(vec3 p) {
     bool in_roi = all(greaterThanEqual(p, u_roi_min)) && all(lessThanEqual(p, u_roi_max));
+    for (int i = 0; i < u_clip_plane_count; ++i)
+        in_roi = in_roi && in_half_space(p, u_clip_plane_points[i], u_clip_plane_normals[i]);
     return in_roi && (u_clip_plane == 0 || in_half_space(p, u_clip_point, u_clip_normal));
 }
 

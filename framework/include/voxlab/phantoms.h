@@ -40,6 +40,11 @@
 //                  0.5 and radius 0.15 N floats above it, centred at
 //                  (N/2, N/2, 0.6 N); elsewhere 0. Lit from +z, the sphere
 //                  casts a disc-shaped shadow of radius 0.15 N on the slab.
+//  nested-labels   float32 holding whole numbers: a label map (tagged volume
+//                  rendering). Label 2 inside the sphere of radius 0.18 N
+//                  centred at c + (0.12 N, 0, 0); label 1 in the rest of the
+//                  sphere of radius 0.40 N centred at c (which holds the
+//                  first); 0 (no label) elsewhere.
 //  ramp-x/y/z      float32. value = the voxel centre's coordinate along that
 //                  axis (i+1/2, j+1/2 or k+1/2): a field with gradient
 //                  exactly 1 along one axis, for sampling and gradient tests.
@@ -74,6 +79,10 @@ inline double shellsPhantomThickness(int n) { return n / 16.0 > 1.0 ? n / 16.0 :
 double sphereOverSlabValue(int n, glm::dvec3 p);
 inline double sphereOverSlabRadius(int n) { return 0.15 * n; }
 inline glm::dvec3 sphereOverSlabCentre(int n) { return {n / 2.0, n / 2.0, 0.6 * n}; }
+
+// --- nested-labels -------------------------------------------------------------
+// The label at world position p (voxel units) for edge length n.
+int nestedLabelsValue(int n, glm::dvec3 p);
 
 // --- ct-signed ---------------------------------------------------------------
 // Its value (Hounsfield units) at world position p for edge length n.

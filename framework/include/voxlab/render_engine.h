@@ -41,6 +41,7 @@
 namespace voxlab {
 
 class EngineDrawContext;
+class SceneVolumes;
 
 // Whether RenderEngine::countSamples() can count a scene's samples: its
 // renderer casts rays (slices take no samples along rays) and it has no
@@ -204,6 +205,8 @@ private:
     std::map<std::pair<int, int>, PrecomputedTexture> precomputed_;
     unsigned precomputeFbo_ = 0;
     unsigned long shaderGeneration_ = 0;
+    // The scene's label map and second volume (scene_volumes.h).
+    std::unique_ptr<SceneVolumes> sceneVolumes_;
 };
 
 }  // namespace voxlab

@@ -162,6 +162,13 @@ public:
     // rays skip (see empty_space.h); the default skips none.
     virtual EmptySpaceRule emptySpaceRule(const ParameterValues& values) const;
 
+    // Whether the scene's other volumes can be drawn with these parameter
+    // values: a label map (scene "labels") and a fused second volume
+    // ("fusion") need a renderer that classifies with them. Throws
+    // voxlab::Error naming the renderer and what it cannot draw; the
+    // default draws neither.
+    virtual void checkScene(const Scene& scene, const ParameterValues& values) const;
+
     // Checks `given` against the declared parameters (unknown name, out of
     // range, not an integer, not a bool) and fills in defaults. Errors name
     // the renderer and parameter: "mip: parameter 'offset' is not declared".

@@ -74,6 +74,7 @@ public:
     ProfileModel profileModel() const override { return ProfileModel::Composite; }
     std::vector<Precomputation> precomputations(const Scene& scene, const Volume& volume,
                                                 const ParameterValues& values) const override;
+    void checkScene(const Scene& scene, const ParameterValues& values) const override;
 };
 
 // The pre-integration table's size, texels on each axis (the preintegration

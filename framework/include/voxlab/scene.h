@@ -22,7 +22,15 @@
 //                                            // draws the side it points into
 //       "other_side": {"renderer": "mip",    // or "none": the other side is invisible
 //                      "transfer_function": "tf/bonsai.json", "parameters": {}}
-//     }
+//     },
+//     "labels": {                            // a label map on the dataset's grid (tagged
+//       "volume": "tooth_labels.nrrd",       // volume rendering), see LabelMap below
+//       "sampling": "nearest",               // or "masks"
+//       "classes": [{"label": 1, "name": "enamel", "transfer_function": ..., "visible": true}],
+//       "distance": {"to": 3, "transfer_function": ..., "apply_to": [1, 2]}
+//     },
+//     "fusion": {"dataset": "pet.nrrd", "mode": "sum", ...},  // a second volume, see Fusion
+//     "clip_planes": [{"point": [64, 64, 64], "normal": [0, 0, 1]}]   // up to 6
 //   }
 //
 // Every key is optional except "dataset". Unknown keys and wrong types are
@@ -80,6 +88,85 @@ struct CuttingPlane {
     ParameterValues otherParameters;
 };
 
+// One class of a label map: how the voxels that carry `label` are shown.
+struct LabelClass {
+    int label = 0;  // 0..kMaxLabel
+    std::string name;
+    std::optional<TransferFunction> transferFunction;  // default: the scene's own
+    bool visible = true;
+};
+
+// A distance-based transfer function (Tappenbeck et al. 2006, "distance to
+// the tumour"): the Euclidean distance (world units) from each voxel to the
+// nearest voxel labelled `to`, computed on the CPU, drives a second transfer
+// function over distance. A sample whose label is in `applyTo` (default:
+// every label but `to`) takes that function's colour, and its opacity is
+// multiplied by that function's opacity.
+struct LabelDistance {
+    int to = 1;
+    TransferFunction transferFunction;
+    std::vector<int> applyTo;
+};
+
+// How a sample between voxels finds its label. Labels are categories, never
+// interpolated: 2.5 is not "between liver and kidney".
+//   nearest  the label of the voxel that contains the sample;
+//   masks    each label's indicator (1 on its voxels, 0 elsewhere)
+//            interpolated trilinearly, and the sample's colour the blend of
+//            the labels' classifications by those weights (smooth borders).
+enum class LabelSampling { Nearest, Masks };
+
+// A label map: a volume of whole numbers on the dataset's grid, one
+// transfer function per label (tagged volume rendering). Label 0 means "no
+// label". A label without a class of its own, label 0 included, is shown
+// with the scene's transfer function.
+constexpr int kMaxLabel = 65535;
+constexpr std::size_t kMaxLabelClasses = 255;
+struct LabelMap {
+    std::string volume;  // resolved path or phantom spec
+    LabelSampling sampling = LabelSampling::Nearest;
+    std::vector<LabelClass> classes;
+    std::optional<LabelDistance> distance;
+
+    // The class of `label`, or nullptr when it has none.
+    const LabelClass* find(int label) const;
+};
+
+// A second scalar volume shown with the first (image fusion). It covers the
+// same box as the first: a different grid is resampled onto it by
+// position in the box. Each volume is classified by its own transfer
+// function (the second's default: a grey ramp over its window).
+//   checkerboard   3D squares of `checkerSize` voxels (of the first volume)
+//                  alternate between the two volumes' classifications;
+//   split          the second volume on the negative side of the plane
+//                  (splitPoint, splitNormal), the first on the positive;
+//   color_opacity  colour from the second volume, opacity from the first
+//                  (anatomy from CT, function from PET);
+//   sum            the two classifications added, premultiplied, opacity
+//                  clamped to 1.
+enum class FusionMode { Checkerboard, Split, ColorOpacity, Sum };
+const char* fusionModeName(FusionMode mode);
+FusionMode parseFusionMode(const std::string& name);  // throws voxlab::Error
+struct Fusion {
+    std::string dataset;  // resolved path or phantom spec
+    FusionMode mode = FusionMode::Sum;
+    std::optional<glm::dvec2> window;  // default: the second volume's min..max
+    std::optional<TransferFunction> transferFunction;
+    double checkerSize = 16.0;
+    std::optional<glm::dvec3> splitPoint;  // voxel coordinates of the first volume; default: the centre
+    glm::dvec3 splitNormal{1.0, 0.0, 0.0};
+};
+
+// A clip plane keeps the half-space its normal points into,
+// dot(p - point, normal) >= 0; a scene has up to kMaxClipPlanes of them, on
+// top of the region of interest. Every renderer samples only what all of
+// them keep.
+constexpr std::size_t kMaxClipPlanes = 6;
+struct ClipPlane {
+    glm::dvec3 point{0.0};        // voxel coordinates
+    glm::dvec3 normal{0.0, 0.0, 1.0};  // world direction, any length > 0
+};
+
 // Limits every way of writing a scene (JSON, command line, viewer) obeys.
 constexpr int kMaxImageSize = 8192;  // pixels, per side
 constexpr double kMaxStep = 64.0;    // in smallest spacings; steps are in (0, kMaxStep]
@@ -102,6 +189,9 @@ struct Scene {
     std::optional<TransferFunction2D> transferFunction2D;
     std::optional<RegionOfInterest> roi;
     std::optional<CuttingPlane> cuttingPlane;
+    std::optional<LabelMap> labels;
+    std::optional<Fusion> fusion;
+    std::vector<ClipPlane> clipPlanes;
 
     // Parses a scene; `where` prefixes error messages (usually the path),
     // `baseDir` resolves relative paths.

@@ -301,6 +301,22 @@ void freeze(RayProfile& profile, int from, const glm::vec4& accumulated) {
     for (std::size_t k = std::size_t(from); k < profile.samples.size(); ++k) profile.samples[k].accumulated = accumulated;
 }
 
+// Clips a ray to the box cropped by the roi (an roi that misses the box
+// leaves nothing) and by the clip planes' half-spaces.
+bool clipToSceneRegion(const Volume& volume, const Scene& scene, const glm::dvec3& origin, const glm::dvec3& dir,
+                       double* t0, double* t1) {
+    glm::dvec3 lo(0.0), hi = volume.extent();
+    if (scene.roi) {
+        lo = glm::max(lo, scene.roi->min * volume.spacing());
+        hi = glm::min(hi, scene.roi->max * volume.spacing());
+        if (lo.x >= hi.x || lo.y >= hi.y || lo.z >= hi.z) return false;
+    }
+    bool hits = clipRayToBox(origin, dir, lo, hi, t0, t1);
+    for (const ClipPlane& plane : scene.clipPlanes)
+        hits = hits && clipToHalfSpace(origin, dir, plane.point * volume.spacing(), glm::normalize(plane.normal), t0, t1);
+    return hits;
+}
+
 // The ray through the pixel's centre, clipped to the box cropped by the roi
 // (an roi that misses the box leaves nothing), the cutting plane's
 // half-space and the renderer's own clipping. Returns whether any is left.
@@ -308,15 +324,8 @@ bool clipPixelRay(RayProfile& profile, const Renderer& renderer, const Volume& v
                   const ParameterValues& values, const Camera& cam) {
     cam.ray(profile.px + 0.5, profile.py + 0.5, &profile.origin, &profile.direction);
     const glm::dvec3 origin = profile.origin, dir = profile.direction;
-    glm::dvec3 lo(0.0), hi = volume.extent();
-    bool empty = false;
-    if (scene.roi) {
-        lo = glm::max(lo, scene.roi->min * volume.spacing());
-        hi = glm::min(hi, scene.roi->max * volume.spacing());
-        empty = lo.x >= hi.x || lo.y >= hi.y || lo.z >= hi.z;
-    }
     double t0 = 0.0, t1 = 0.0;
-    bool hits = !empty && clipRayToBox(origin, dir, lo, hi, &t0, &t1);
+    bool hits = clipToSceneRegion(volume, scene, origin, dir, &t0, &t1);
     if (hits && scene.cuttingPlane) {
         const CuttingPlane& cut = *scene.cuttingPlane;
         const glm::dvec3 point = cut.point.value_or(glm::dvec3(volume.dims()) * 0.5) * volume.spacing();
@@ -591,20 +600,14 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
 
 double samplesByRule(const Volume& volume, const Scene& scene) {
     const Camera camera = Camera::make(scene.camera, volume.extent(), scene.width, scene.height);
-    glm::dvec3 lo(0.0), hi = volume.extent();
-    if (scene.roi) {
-        lo = glm::max(lo, scene.roi->min * volume.spacing());
-        hi = glm::min(hi, scene.roi->max * volume.spacing());
-    }
     const double step = scene.step * volume.minSpacing();
     double total = 0.0;
     for (int y = 0; y < scene.height; ++y)
         for (int x = 0; x < scene.width; ++x) {
             glm::dvec3 o, d;
             camera.ray(x + 0.5, y + 0.5, &o, &d);
-            double t0, t1;
-            if (!clipRayToBox(o, d, lo, hi, &t0, &t1)) continue;
-            total += std::floor((t1 - t0) / step + 0.5);
+            double t0 = 0.0, t1 = 0.0;
+            if (clipToSceneRegion(volume, scene, o, d, &t0, &t1)) total += std::floor((t1 - t0) / step + 0.5);
         }
     return total;
 }

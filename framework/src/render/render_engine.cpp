@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "voxlab/error.h"
+#include "voxlab/scene_volumes.h"
 #include "voxlab_gl.h"
 
 namespace voxlab {
@@ -15,11 +16,6 @@ constexpr int kVolumeUnit = 0;
 constexpr int kTransferFunctionUnit = 1;
 constexpr int kGradientUnit = 2;
 constexpr int kLayerUnit = 3;  // and kLayerUnit + 1 (cut_compose.frag)
-
-// The transfer function used when a renderer needs one and the scene has none.
-TransferFunction fallbackTransferFunction(glm::dvec2 window) {
-    return TransferFunction({{window.x, glm::vec3(1.0f), 0.0f}, {window.y, glm::vec3(1.0f), 0.1f}});
-}
 
 TransferFunction2D fallbackTransferFunction2D(glm::dvec2 window) {
     Tf2dWidget w;
@@ -77,11 +73,13 @@ RenderEngine::RenderEngine(std::string implementationRoot)
     glGenTextures(1, &volumeTexture_);
     glGenTextures(1, &gradientTexture_);
     for (TransferFunctionSlot& slot : tf_) glGenTextures(1, &slot.texture);
+    sceneVolumes_ = std::make_unique<SceneVolumes>();
     checkGlError("creating the render engine");
 }
 
 RenderEngine::~RenderEngine() {
     programs_.clear();
+    sceneVolumes_.reset();
     glDeleteVertexArrays(1, &vao_);
     glDeleteTextures(1, &volumeTexture_);
     glDeleteTextures(1, &gradientTexture_);
@@ -108,37 +106,8 @@ void RenderEngine::setVolume(const Volume& volume) {
     if (d.x > maxSize || d.y > maxSize || d.z > maxSize)
         throw Error(volume.name() + ": dimensions exceed this GPU's 3D texture limit of " +
                     std::to_string(maxSize));
-    glBindTexture(GL_TEXTURE_3D, volumeTexture_);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    // The shader reads texel t in [0,1] and recovers the data value as
-    // t*scale + offset, so every renderer works in the data's own units.
-    switch (volume.type()) {
-        case VoxelType::UInt8:
-            glTexImage3D(GL_TEXTURE_3D, 0, GL_R8, d.x, d.y, d.z, 0, GL_RED, GL_UNSIGNED_BYTE, volume.data());
-            valueScale_ = 255.0f, valueOffset_ = 0.0f;
-            break;
-        case VoxelType::UInt16:
-            glTexImage3D(GL_TEXTURE_3D, 0, GL_R16, d.x, d.y, d.z, 0, GL_RED, GL_UNSIGNED_SHORT, volume.data());
-            valueScale_ = 65535.0f, valueOffset_ = 0.0f;
-            break;
-        case VoxelType::Int16: {
-            // R16_SNORM would merge -32768 and -32767; shifting keeps every value.
-            std::vector<std::uint16_t> shifted(volume.voxelCount());
-            const auto* src = static_cast<const std::int16_t*>(volume.data());
-            for (std::size_t i = 0; i < shifted.size(); ++i) shifted[i] = std::uint16_t(int(src[i]) + 32768);
-            glTexImage3D(GL_TEXTURE_3D, 0, GL_R16, d.x, d.y, d.z, 0, GL_RED, GL_UNSIGNED_SHORT, shifted.data());
-            valueScale_ = 65535.0f, valueOffset_ = -32768.0f;
-            break;
-        }
-        case VoxelType::Float32:
-            glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, d.x, d.y, d.z, 0, GL_RED, GL_FLOAT, volume.data());
-            valueScale_ = 1.0f, valueOffset_ = 0.0f;
-            break;
-    }
-    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
-    checkGlError("uploading the volume texture");
+    const glm::vec2 scaleOffset = uploadVolumeTexture(volumeTexture_, volume);
+    valueScale_ = scaleOffset.x, valueOffset_ = scaleOffset.y;
     volume_ = &volume;
     ++volumeGeneration_;
     for (TransferFunctionSlot& slot : tf_) slot.table.size = 0;  // the value range may differ
@@ -152,15 +121,7 @@ void RenderEngine::uploadTransferFunction(TransferFunctionSlot& slot, const Tran
     slot.table = tf.bake(range.x, range.y);
     // Row-major in a 2D texture (see transfer_function.h); the shader
     // fetches and interpolates entries itself, so no filtering here.
-    const int width = std::min(slot.table.size, kTransferFunctionRowLength);
-    const int rows = (slot.table.size + width - 1) / width;
-    std::vector<glm::vec4> texels(std::size_t(width) * rows, slot.table.rgba.back());
-    std::copy(slot.table.rgba.begin(), slot.table.rgba.end(), texels.begin());
-    glBindTexture(GL_TEXTURE_2D, slot.texture);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, rows, 0, GL_RGBA, GL_FLOAT, texels.data());
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    checkGlError("uploading the transfer function");
+    uploadTableTexture(slot.texture, slot.table);
     slot.points = tf.points();
     slot.range = range;
     ++slot.generation;
@@ -283,6 +244,13 @@ void RenderEngine::setSceneUniforms(const ShaderProgram& prog, const Scene& scen
     }
     prog.set("u_roi_min", glm::vec3(lo));
     prog.set("u_roi_max", glm::vec3(hi));
+    // Clip planes: points from voxel to world coordinates; their count is
+    // baked into the program (draw()).
+    for (std::size_t i = 0; i < scene.clipPlanes.size(); ++i) {
+        const std::string index = "[" + std::to_string(i) + "]";
+        prog.set(("u_clip_plane_points" + index).c_str(), glm::vec3(scene.clipPlanes[i].point * vol.spacing()));
+        prog.set(("u_clip_plane_normals" + index).c_str(), glm::vec3(glm::normalize(scene.clipPlanes[i].normal)));
+    }
 }
 
 // The engine's side of DrawContext: one dynamic vertex buffer of world
@@ -367,7 +335,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     PassInputs inputs;
     inputs.tf = pass.transferFunction;
     if (!inputs.tf && renderer.needsTransferFunction()) {
-        fallback = fallbackTransferFunction(window);
+        fallback = defaultCompositingFunction(window);
         inputs.tf = &*fallback;
     }
     if (scene.transferFunction2D)
@@ -377,15 +345,25 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     // Switches are baked into the program (see ShaderConstants): the
     // interpolation, whether there is a transfer function, the pass's kind,
     // and every bool parameter.
-    const bool skipping = scene.skipEmptySpace && !renderer.objectOrder();
+    // A label map and a second volume (scene_volumes.h): loaded, checked and
+    // uploaded before the program is chosen, so that a bad file fails first.
+    // (The other side of a cutting plane may be drawn by a renderer that
+    // ignores them.)
+    if (pass.slot == 0) renderer.checkScene(scene, pass.values);
+    sceneVolumes_->prepare(scene, *volume_, volumeGeneration_, inputs.tf);
+    // The bricks know the first volume only: a fused second volume can show
+    // anywhere.
+    const bool skipping = scene.skipEmptySpace && !renderer.objectOrder() && !scene.fusion;
     ShaderConstants constants = {{"u_interpolation", int(scene.interpolation)},
                                  {"u_has_tf", inputs.tf ? 1 : 0},
                                  {"u_layer", pass.layer ? 1 : 0},
                                  {"u_clip_plane", pass.clip ? 1 : 0},
+                                 {"u_clip_plane_count", int(std::min(scene.clipPlanes.size(), kMaxClipPlanes))},
                                  {"u_skipping", skipping ? 1 : 0},
                                  {"u_count_samples", countingSamples_ ? 1 : 0}};
     for (const ParameterSpec& p : renderer.parameters())
         if (p.type == ParameterType::Bool) constants["u_" + p.name] = pass.values.at(p.name) != 0.0 ? 1 : 0;
+    sceneVolumes_->addConstants(scene, &constants);
     const ShaderProgram& prog = program(renderer.vertexShader(), renderer.fragmentShader(), constants);
     lastRenderSources_.clear();
     for (const std::string& shown : prog.sourceFiles()) lastRenderSources_.push_back(filePath(shown));
@@ -412,7 +390,11 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     prog.use();
     setPassUniforms(prog, scene, pass, inputs);
     bindPrecomputations(prog, precomputations, pass.slot);
-    if (skipping) bindBricks(prog, renderer.emptySpaceRule(pass.values), inputs.tf ? &slot.table : nullptr, inputs.widgets);
+    sceneVolumes_->bind(prog, scene, *volume_);
+    // With a label map a brick is empty only if no label's function shows it.
+    const TransferFunctionTable* table =
+        scene.labels ? &sceneVolumes_->labelUnionTable() : inputs.tf ? &slot.table : nullptr;
+    if (skipping) bindBricks(prog, renderer.emptySpaceRule(pass.values), table, inputs.widgets);
 
     glDisable(GL_DEPTH_TEST);
     if (renderer.objectOrder()) {

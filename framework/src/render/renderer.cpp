@@ -44,6 +44,11 @@ std::vector<ParameterSpec> Renderer::parametersFor(glm::dvec2 dataRange) const {
 
 void Renderer::draw(DrawContext&, const ParameterValues&) const {}
 
+void Renderer::checkScene(const Scene& scene, const ParameterValues&) const {
+    if (scene.labels) throw Error(id() + ": does not draw label maps (scene \"labels\"; composite does)");
+    if (scene.fusion) throw Error(id() + ": does not draw a fused second volume (scene \"fusion\"; composite does)");
+}
+
 std::optional<GradientEstimator> Renderer::precomputedGradients(const ParameterValues& values) const {
     const auto on = [&](const char* name) {
         const auto it = values.find(name);

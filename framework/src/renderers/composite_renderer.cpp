@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "voxlab/camera.h"
+#include "voxlab/error.h"
 #include "voxlab/volume.h"
 
 namespace voxlab {
@@ -62,6 +63,17 @@ bool on(const ParameterValues& values, const char* name) {
     return it != values.end() && it->second != 0.0;
 }
 }  // namespace
+
+// A label map and a second volume replace the classification (each sample
+// by its label, or by both volumes), so the other ways of classifying do not
+// combine with them.
+void CompositeRenderer::checkScene(const Scene& scene, const ParameterValues& values) const {
+    const char* other = scene.labels ? "a label map (scene \"labels\")" : "a fused volume (scene \"fusion\")";
+    if (!scene.labels && !scene.fusion) return;
+    for (const char* name : {"preintegrated", "preclassify"})
+        if (on(values, name))
+            throw Error(std::string("composite: parameter '") + name + "' does not combine with " + other);
+}
 
 // A pre-integrated segment reaches from its sample to the next one, which
 // may lie in a brick that a skipped one borders: skipping would drop the

@@ -32,6 +32,28 @@ Interpolation parseInterpolation(const std::string& name) {
     throw Error("unknown interpolation '" + name + "' (expected nearest, trilinear or hardware)");
 }
 
+const char* fusionModeName(FusionMode mode) {
+    switch (mode) {
+        case FusionMode::Checkerboard: return "checkerboard";
+        case FusionMode::Split: return "split";
+        case FusionMode::ColorOpacity: return "color_opacity";
+        case FusionMode::Sum: return "sum";
+    }
+    return "?";
+}
+
+FusionMode parseFusionMode(const std::string& name) {
+    for (FusionMode m : {FusionMode::Checkerboard, FusionMode::Split, FusionMode::ColorOpacity, FusionMode::Sum})
+        if (name == fusionModeName(m)) return m;
+    throw Error("unknown fusion mode '" + name + "' (expected checkerboard, split, color_opacity or sum)");
+}
+
+const LabelClass* LabelMap::find(int label) const {
+    for (const LabelClass& c : classes)
+        if (c.label == label) return &c;
+    return nullptr;
+}
+
 namespace {
 
 using json = nlohmann::json;
@@ -76,10 +98,19 @@ private:
 
     void camera(const json& j, CameraSpec* cam) const;
     glm::dvec3 vec3(const json& j, const std::string& key) const;
+    glm::dvec2 window(const json& j, const std::string& key) const;
     ParameterValues parameters(const json& j, const std::string& key) const;
     TransferFunction transferFunction(const json& j, const std::string& key) const;
     RegionOfInterest roi(const json& j) const;
     CuttingPlane cuttingPlane(const json& j) const;
+    void sampling(const json& j, Scene* s) const;
+    std::string dataPath(const json& j, const std::string& key) const;
+    int label(const json& j, const std::string& key) const;
+    LabelClass labelClass(const json& j, const std::string& key) const;
+    LabelDistance labelDistance(const json& j) const;
+    LabelMap labels(const json& j) const;
+    Fusion fusion(const json& j) const;
+    std::vector<ClipPlane> clipPlanes(const json& j) const;
 
     std::string where_, baseDir_;
 };
@@ -118,6 +149,14 @@ void Parser::camera(const json& j, CameraSpec* cam) const {
         if (!pan.is_array() || pan.size() != 2) fail("camera.pan", "expected [x, y]");
         cam->pan = glm::dvec2(number(pan[0], "camera.pan[0]"), number(pan[1], "camera.pan[1]"));
     }
+}
+
+glm::dvec2 Parser::window(const json& w, const std::string& key) const {
+    const char* msg = "expected [lo, hi], numbers with hi > lo";
+    if (!w.is_array() || w.size() != 2) fail(key, msg);
+    const glm::dvec2 lohi(number(w[0], key + "[0]"), number(w[1], key + "[1]"));
+    if (!(lohi.y > lohi.x)) fail(key, msg);
+    return lohi;
 }
 
 glm::dvec3 Parser::vec3(const json& j, const std::string& key) const {
@@ -173,10 +212,152 @@ CuttingPlane Parser::cuttingPlane(const json& j) const {
     return c;
 }
 
+void Parser::sampling(const json& sampling, Scene* s) const {
+    if (!sampling.is_object())
+        fail("sampling", "expected an object {\"step\", \"interpolation\", \"skip_empty_space\"}");
+    onlyKeys(sampling, "sampling", {"step", "interpolation", "skip_empty_space"});
+    if (sampling.contains("step")) {
+        s->step = number(sampling["step"], "sampling.step");
+        if (s->step <= 0.0 || s->step > kMaxStep)
+            fail("sampling.step", "expected a number > 0 and <= " + std::to_string(int(kMaxStep)));
+    }
+    if (sampling.contains("interpolation")) {
+        const std::string name = string(sampling["interpolation"], "sampling.interpolation");
+        s->interpolation = located("sampling.interpolation", [&] { return parseInterpolation(name); });
+    }
+    if (sampling.contains("skip_empty_space")) {
+        if (!sampling["skip_empty_space"].is_boolean()) fail("sampling.skip_empty_space", "expected true or false");
+        s->skipEmptySpace = sampling["skip_empty_space"].get<bool>();
+    }
+}
+
+std::string Parser::dataPath(const json& j, const std::string& key) const {
+    const std::string name = string(j, key);
+    return located(key, [&] { return resolveDataPath(name, baseDir_); });
+}
+
+int Parser::label(const json& j, const std::string& key) const {
+    if (!j.is_number_integer() || j.get<long long>() < 0 || j.get<long long>() > kMaxLabel)
+        fail(key, "expected a label, a whole number in 0.." + std::to_string(kMaxLabel));
+    return j.get<int>();
+}
+
+LabelClass Parser::labelClass(const json& j, const std::string& key) const {
+    if (!j.is_object()) fail(key, "expected an object {\"label\", \"name\", \"transfer_function\", \"visible\"}");
+    onlyKeys(j, key, {"label", "name", "transfer_function", "visible"});
+    if (!j.contains("label")) fail(key + ".label", "missing (required)");
+    LabelClass c;
+    c.label = label(j["label"], key + ".label");
+    if (j.contains("name")) c.name = string(j["name"], key + ".name");
+    if (j.contains("transfer_function")) {
+        c.transferFunction = transferFunction(j["transfer_function"], key + ".transfer_function");
+        if (c.transferFunction->empty()) fail(key + ".transfer_function", "needs at least one point");
+    }
+    if (j.contains("visible")) {
+        if (!j["visible"].is_boolean()) fail(key + ".visible", "expected true or false");
+        c.visible = j["visible"].get<bool>();
+    }
+    return c;
+}
+
+LabelDistance Parser::labelDistance(const json& j) const {
+    const std::string key = "labels.distance";
+    if (!j.is_object()) fail(key, "expected an object {\"to\", \"transfer_function\", \"apply_to\"}");
+    onlyKeys(j, key, {"to", "transfer_function", "apply_to"});
+    for (const char* required : {"to", "transfer_function"})
+        if (!j.contains(required)) fail(key + "." + required, "missing (required)");
+    LabelDistance d;
+    d.to = label(j["to"], key + ".to");
+    d.transferFunction = transferFunction(j["transfer_function"], key + ".transfer_function");
+    if (d.transferFunction.empty()) fail(key + ".transfer_function", "needs at least one point");
+    if (j.contains("apply_to")) {
+        if (!j["apply_to"].is_array()) fail(key + ".apply_to", "expected an array of labels");
+        for (std::size_t i = 0; i < j["apply_to"].size(); ++i)
+            d.applyTo.push_back(label(j["apply_to"][i], key + ".apply_to[" + std::to_string(i) + "]"));
+    }
+    return d;
+}
+
+LabelMap Parser::labels(const json& j) const {
+    if (j.is_string()) return LabelMap{dataPath(j, "labels"), LabelSampling::Nearest, {}, std::nullopt};
+    if (!j.is_object()) fail("labels", "expected a label volume's path or an object {\"volume\", \"classes\", ...}");
+    onlyKeys(j, "labels", {"volume", "sampling", "classes", "distance"});
+    if (!j.contains("volume")) fail("labels.volume", "missing (required)");
+    LabelMap m;
+    m.volume = dataPath(j["volume"], "labels.volume");
+    if (j.contains("sampling")) {
+        const std::string how = string(j["sampling"], "labels.sampling");
+        if (how == "nearest") m.sampling = LabelSampling::Nearest;
+        else if (how == "masks") m.sampling = LabelSampling::Masks;
+        else fail("labels.sampling", "unknown sampling '" + how + "' (expected nearest or masks)");
+    }
+    if (j.contains("classes")) {
+        const json& classes = j["classes"];
+        if (!classes.is_array()) fail("labels.classes", "expected an array of classes");
+        if (classes.size() > kMaxLabelClasses)
+            fail("labels.classes", "at most " + std::to_string(kMaxLabelClasses) + " classes");
+        for (std::size_t i = 0; i < classes.size(); ++i) {
+            const std::string key = "labels.classes[" + std::to_string(i) + "]";
+            LabelClass c = labelClass(classes[i], key);
+            if (m.find(c.label)) fail(key + ".label", "label " + std::to_string(c.label) + " has a class already");
+            m.classes.push_back(std::move(c));
+        }
+    }
+    if (j.contains("distance")) m.distance = labelDistance(j["distance"]);
+    return m;
+}
+
+Fusion Parser::fusion(const json& j) const {
+    if (!j.is_object()) fail("fusion", "expected an object {\"dataset\", \"mode\", ...}");
+    onlyKeys(j, "fusion", {"dataset", "mode", "window", "transfer_function", "checker_size", "split"});
+    if (!j.contains("dataset")) fail("fusion.dataset", "missing (required)");
+    Fusion f;
+    f.dataset = dataPath(j["dataset"], "fusion.dataset");
+    if (j.contains("mode")) {
+        const std::string mode = string(j["mode"], "fusion.mode");
+        f.mode = located("fusion.mode", [&] { return parseFusionMode(mode); });
+    }
+    if (j.contains("window")) f.window = window(j["window"], "fusion.window");
+    if (j.contains("transfer_function"))
+        f.transferFunction = transferFunction(j["transfer_function"], "fusion.transfer_function");
+    if (j.contains("checker_size")) {
+        f.checkerSize = number(j["checker_size"], "fusion.checker_size");
+        if (!(f.checkerSize >= 1.0 && f.checkerSize <= 4096.0))
+            fail("fusion.checker_size", "expected a number of voxels in 1..4096");
+    }
+    if (j.contains("split")) {
+        const json& split = j["split"];
+        if (!split.is_object()) fail("fusion.split", "expected an object {\"point\", \"normal\"}");
+        onlyKeys(split, "fusion.split", {"point", "normal"});
+        if (split.contains("point")) f.splitPoint = vec3(split["point"], "fusion.split.point");
+        if (split.contains("normal")) f.splitNormal = vec3(split["normal"], "fusion.split.normal");
+        if (glm::length(f.splitNormal) <= 0.0) fail("fusion.split.normal", "must not be zero");
+    }
+    return f;
+}
+
+std::vector<ClipPlane> Parser::clipPlanes(const json& j) const {
+    if (!j.is_array()) fail("clip_planes", "expected an array of planes {\"point\", \"normal\"}");
+    if (j.size() > kMaxClipPlanes) fail("clip_planes", "at most " + std::to_string(kMaxClipPlanes) + " planes");
+    std::vector<ClipPlane> planes;
+    for (std::size_t i = 0; i < j.size(); ++i) {
+        const std::string key = "clip_planes[" + std::to_string(i) + "]";
+        if (!j[i].is_object()) fail(key, "expected an object {\"point\", \"normal\"}");
+        onlyKeys(j[i], key, {"point", "normal"});
+        for (const char* required : {"point", "normal"})
+            if (!j[i].contains(required)) fail(key + "." + required, "missing (required)");
+        ClipPlane p{vec3(j[i]["point"], key + ".point"), vec3(j[i]["normal"], key + ".normal")};
+        if (glm::length(p.normal) <= 0.0) fail(key + ".normal", "must not be zero");
+        planes.push_back(p);
+    }
+    return planes;
+}
+
 Scene Parser::parse(const json& j) const {
     if (!j.is_object()) throw Error((where_.empty() ? "" : where_ + ": ") + "expected a JSON object");
     onlyKeys(j, "", {"dataset", "renderer", "camera", "projection", "size", "sampling", "window",
-                     "background", "parameters", "transfer_function", "tf2d", "roi", "cutting_plane"});
+                     "background", "parameters", "transfer_function", "tf2d", "roi", "cutting_plane", "labels",
+                     "fusion", "clip_planes"});
     Scene s;
 
     if (!j.contains("dataset")) fail("dataset", "missing (required)");
@@ -207,34 +388,9 @@ Scene Parser::parse(const json& j) const {
         s.height = size[1].get<int>();
     }
 
-    if (j.contains("sampling")) {
-        const json& sampling = j["sampling"];
-        if (!sampling.is_object())
-            fail("sampling", "expected an object {\"step\", \"interpolation\", \"skip_empty_space\"}");
-        onlyKeys(sampling, "sampling", {"step", "interpolation", "skip_empty_space"});
-        if (sampling.contains("step")) {
-            s.step = number(sampling["step"], "sampling.step");
-            if (s.step <= 0.0 || s.step > kMaxStep)
-                fail("sampling.step", "expected a number > 0 and <= " + std::to_string(int(kMaxStep)));
-        }
-        if (sampling.contains("interpolation")) {
-            const std::string name = string(sampling["interpolation"], "sampling.interpolation");
-            s.interpolation = located("sampling.interpolation", [&] { return parseInterpolation(name); });
-        }
-        if (sampling.contains("skip_empty_space")) {
-            if (!sampling["skip_empty_space"].is_boolean()) fail("sampling.skip_empty_space", "expected true or false");
-            s.skipEmptySpace = sampling["skip_empty_space"].get<bool>();
-        }
-    }
+    if (j.contains("sampling")) sampling(j["sampling"], &s);
 
-    if (j.contains("window")) {
-        const json& w = j["window"];
-        const char* msg = "expected [lo, hi], numbers with hi > lo";
-        if (!w.is_array() || w.size() != 2) fail("window", msg);
-        const glm::dvec2 lohi(number(w[0], "window[0]"), number(w[1], "window[1]"));
-        if (!(lohi.y > lohi.x)) fail("window", msg);
-        s.window = lohi;
-    }
+    if (j.contains("window")) s.window = window(j["window"], "window");
 
     if (j.contains("background")) {
         const json& b = j["background"];
@@ -262,10 +418,40 @@ Scene Parser::parse(const json& j) const {
     }
     if (j.contains("roi")) s.roi = roi(j["roi"]);
     if (j.contains("cutting_plane")) s.cuttingPlane = cuttingPlane(j["cutting_plane"]);
+    if (j.contains("labels")) s.labels = labels(j["labels"]);
+    if (j.contains("fusion")) s.fusion = fusion(j["fusion"]);
+    if (j.contains("clip_planes")) s.clipPlanes = clipPlanes(j["clip_planes"]);
     return s;
 }
 
 using json_text::shortFloat;
+
+json vec3Json(glm::dvec3 v) { return {v.x, v.y, v.z}; }
+
+json labelsJson(const LabelMap& m) {
+    json j = {{"volume", m.volume}, {"sampling", m.sampling == LabelSampling::Masks ? "masks" : "nearest"}};
+    j["classes"] = json::array();
+    for (const LabelClass& c : m.classes) {
+        json cj = {{"label", c.label}, {"visible", c.visible}};
+        if (!c.name.empty()) cj["name"] = c.name;
+        if (c.transferFunction) cj["transfer_function"] = c.transferFunction->toJson();
+        j["classes"].push_back(cj);
+    }
+    if (m.distance) {
+        j["distance"] = {{"to", m.distance->to}, {"transfer_function", m.distance->transferFunction.toJson()}};
+        if (!m.distance->applyTo.empty()) j["distance"]["apply_to"] = m.distance->applyTo;
+    }
+    return j;
+}
+
+json fusionJson(const Fusion& f) {
+    json j = {{"dataset", f.dataset}, {"mode", fusionModeName(f.mode)}, {"checker_size", f.checkerSize}};
+    if (f.window) j["window"] = {f.window->x, f.window->y};
+    if (f.transferFunction) j["transfer_function"] = f.transferFunction->toJson();
+    j["split"] = {{"normal", vec3Json(f.splitNormal)}};
+    if (f.splitPoint) j["split"]["point"] = vec3Json(*f.splitPoint);
+    return j;
+}
 
 }  // namespace
 
@@ -310,6 +496,12 @@ json Scene::toJson() const {
         if (c.otherTransferFunction) other["transfer_function"] = c.otherTransferFunction->toJson();
         cut["other_side"] = other;
         j["cutting_plane"] = cut;
+    }
+    if (labels) j["labels"] = labelsJson(*labels);
+    if (fusion) j["fusion"] = fusionJson(*fusion);
+    if (!clipPlanes.empty()) {
+        j["clip_planes"] = json::array();
+        for (const ClipPlane& p : clipPlanes) j["clip_planes"].push_back({{"point", vec3Json(p.point)}, {"normal", vec3Json(p.normal)}});
     }
     return j;
 }

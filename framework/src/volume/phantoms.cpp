@@ -178,6 +178,12 @@ int ctSignedPhantomValue(int n, glm::dvec3 p) {
     return -1000;
 }
 
+int nestedLabelsValue(int n, glm::dvec3 p) {
+    const glm::dvec3 c(n / 2.0);
+    if (glm::length(p - (c + glm::dvec3(0.12 * n, 0.0, 0.0))) <= 0.18 * n) return 2;
+    return glm::length(p - c) <= 0.40 * n ? 1 : 0;
+}
+
 double marschnerLobbValue(double x, double y, double z) {
     return (marschnerLobbZ(z) + marschnerLobbRadial(x, y)) * kMarschnerLobbScale;
 }
@@ -190,7 +196,7 @@ double sheppLoganValue(glm::dvec3 q) {
 }
 
 std::vector<std::string> phantomNames() {
-    return {"sphere", "shells", "ct-signed", "marschner-lobb", "shepp-logan", "sphere-over-slab", "ramp-x", "ramp-y", "ramp-z"};
+    return {"sphere", "shells", "ct-signed", "marschner-lobb", "shepp-logan", "sphere-over-slab", "nested-labels", "ramp-x", "ramp-y", "ramp-z"};
 }
 
 Volume makePhantom(const std::string& spec) {
@@ -235,6 +241,11 @@ Volume makePhantom(const std::string& spec) {
     if (name == "sphere-over-slab") {
         return floatVolume(spec, n, [&](int i, int j, int k) {
             return sphereOverSlabValue(n, {centre(i), centre(j), centre(k)});
+        });
+    }
+    if (name == "nested-labels") {
+        return floatVolume(spec, n, [&](int i, int j, int k) {
+            return double(nestedLabelsValue(n, {centre(i), centre(j), centre(k)}));
         });
     }
     if (name == "shells") return makeShells(spec, n);

@@ -166,6 +166,33 @@ TEST_F(RayProfileTest, CompositeWithAmbientOcclusionMatchesTheRenderer) {
     EXPECT_GT(compareWithRenderer(dataset("tooth.nrrd"), s, 3, &plain).maxError, 10 * kPixelTolerance);
 }
 
+// A label map (the labels stage) and a fused second volume replace the
+// classification; the profile classifies as their handout and scene.h say.
+TEST_F(RayProfileTest, CompositeWithLabelsAndFusionMatchesTheRenderer) {
+    for (const char* name : {"tooth_masks.json", "headsq_hu_anisotropic.json"}) {
+        Scene s = Scene::load(std::string(VOXLAB_SOURCE_DIR) + "/reference/labels/scenes/" + name);
+        s.width = s.height = 40;
+        const Volume volume = loadVolume(s.dataset);
+        const Comparison c = compareWithRenderer(volume, s, 3);
+        EXPECT_GT(c.hits, c.pixels / 4) << name;
+        EXPECT_LE(c.maxError, kPixelTolerance) << name << ": worst pixel (" << c.worstX << ", " << c.worstY << ")";
+        Scene unlabelled = s;
+        unlabelled.labels.reset();
+        EXPECT_GT(compareWithRenderer(volume, s, 3, &unlabelled).maxError, 10 * kPixelTolerance) << name;
+    }
+    Scene fused = orbitScene("composite", 40, 30, 20);
+    fused.transferFunction = preset("tooth.json");
+    fused.fusion = Fusion{"phantom:shells:48", FusionMode::Checkerboard, std::nullopt,
+                          TransferFunction({{0, glm::vec3(0.2f, 0.5f, 1.0f), 0.0f}, {80, glm::vec3(0.2f, 0.5f, 1.0f), 0.3f}}),
+                          10.0, std::nullopt, glm::dvec3(1.0, 0.0, 0.0)};
+    const Volume tooth = dataset("tooth.nrrd");
+    for (FusionMode mode : {FusionMode::Checkerboard, FusionMode::Sum}) {
+        fused.fusion->mode = mode;
+        const Comparison c = compareWithRenderer(tooth, fused, 3);
+        EXPECT_LE(c.maxError, kPixelTolerance) << fusionModeName(mode);
+    }
+}
+
 // Pre-integration (the preintegration stage): each sample stands for the
 // segment to the next one. The profile integrates each segment itself, in
 // double; the GPU interpolates a 256x256 table whose texels are one value

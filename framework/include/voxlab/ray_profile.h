@@ -6,7 +6,7 @@
 // computeRayProfile() follows the ray the way the ray-casting renderers do
 // (README, "Rendering conventions"), independently of their GLSL:
 //  - the ray from Camera::make + Camera::ray through the pixel's centre,
-//    clipped to the volume's box cropped by the scene's roi (and, for
+//    clipped to the volume's box cropped by the scene's roi and clip planes (and, for
 //    slab_mip, to the slab; for a cutting plane, to the scene renderer's
 //    half-space);
 //  - samples at t_entry + (m + 1/2) step for floor((t_exit - t_entry)/step + 1/2)
@@ -22,7 +22,9 @@
 //    pre-integration (each segment integrated in double, where the GPU
 //    interpolates a table) and shadows (each sample's shadow ray followed,
 //    where the GPU interpolates a light volume: they differ where the
-//    transmittance jumps within one light-volume voxel);
+//    transmittance jumps within one light-volume voxel); with a label map or
+//    a fused second volume, each sample classified as the labels handout and
+//    scene.h define them (ray_profile_scene.cpp);
 //  - mip, slab_mip, minip, average: running maximum, minimum, mean, shown
 //    through the window or the transfer function;
 //  - firsthit: the first sample at or above `threshold`;

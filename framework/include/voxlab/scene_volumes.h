@@ -86,10 +86,6 @@ private:
              distanceTfTexture_ = 0, secondTexture_ = 0, secondTfTexture_ = 0;
 };
 
-// The grey ramp compositing uses when a scene has no transfer function:
-// opacity 0 at the window's low end to 0.1 per unit length at its high end.
-TransferFunction defaultCompositingFunction(glm::dvec2 window);
-
 // Uploads `volume` as a 3D texture in its native precision (R8, R16, R32F;
 // int16 shifted by +32768 into R16 so that no value is lost) and returns the
 // (scale, offset) that turns a texel back into a data value.

@@ -106,4 +106,9 @@ private:
     std::vector<ControlPoint> points_;
 };
 
+// The grey ramp compositing uses when a scene has no transfer function:
+// opacity 0 at the window's low end to 0.1 per unit length at its high end
+// (render_engine.h).
+TransferFunction defaultCompositingFunction(glm::dvec2 window);
+
 }  // namespace voxlab

@@ -15,6 +15,8 @@
 #include "voxlab/renderer.h"
 #include "voxlab/renderers.h"
 #include "voxlab/transfer_function.h"
+#include "ray_profile_scene.h"
+#include "volume_reader.h"
 
 namespace voxlab {
 namespace {
@@ -24,53 +26,6 @@ std::string format(const char* fmt, double a, double b = 0.0) {
     std::snprintf(buf, sizeof buf, fmt, a, b);
     return buf;
 }
-
-// Reading the volume between voxels: continuous voxel coordinates put voxel
-// i's cell at [i, i+1], so its centre is at i + 1/2; indices are clamped to
-// the grid (the border value continues outwards).
-class VolumeReader {
-public:
-    VolumeReader(const Volume& volume, Interpolation interpolation)
-        : volume_(volume), dims_(volume.dims()), extent_(volume.extent()), interpolation_(interpolation) {}
-
-    double voxel(glm::ivec3 ijk) const {
-        ijk = glm::clamp(ijk, glm::ivec3(0), dims_ - 1);
-        return volume_.value(ijk.x, ijk.y, ijk.z);
-    }
-    glm::dvec3 voxelCoordinates(const glm::dvec3& p) const { return p / extent_ * glm::dvec3(dims_); }
-
-    double sample(const glm::dvec3& p) const {
-        if (interpolation_ == Interpolation::Nearest) return voxel(glm::ivec3(glm::floor(voxelCoordinates(p))));
-        return trilinear(p);  // "hardware" too: the GPU's filter, without its reduced-precision weights
-    }
-
-    // Shifted by -1/2 the voxel centres sit on integers: the lower corner is
-    // floor(u) and the weights along each axis are the fractional parts.
-    double trilinear(const glm::dvec3& p) const {
-        const glm::dvec3 u = voxelCoordinates(p) - 0.5;
-        const glm::dvec3 lower = glm::floor(u);
-        const glm::dvec3 w = u - lower;
-        const glm::ivec3 base(lower);
-        double sum = 0.0;
-        for (int corner = 0; corner < 8; ++corner) {
-            const glm::ivec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-            const double weight = (o.x ? w.x : 1.0 - w.x) * (o.y ? w.y : 1.0 - w.y) * (o.z ? w.z : 1.0 - w.z);
-            sum += weight * voxel(base + o);
-        }
-        return sum;
-    }
-
-    const Volume& volume() const { return volume_; }
-    glm::ivec3 dims() const { return dims_; }
-    glm::dvec3 extent() const { return extent_; }
-    Interpolation interpolation() const { return interpolation_; }
-
-private:
-    const Volume& volume_;
-    glm::ivec3 dims_;
-    glm::dvec3 extent_;
-    Interpolation interpolation_;
-};
 
 // The gradient in data units per unit length (the smallest spacing), by the
 // README's estimators: central differences of the interpolated volume at
@@ -289,6 +244,7 @@ struct ProfileInputs {
     const Lighting& lighting;
     const TransferFunction* tf;  // the scene's, or compositing's fallback; null: grey through the window
     glm::dvec2 window;
+    const ProfileSceneClassifier* sceneClassifier;  // a label map or a fused volume; null: neither
 
     double param(const char* name) const { return values.at(name); }
     bool on(const char* name) const {
@@ -418,7 +374,9 @@ double shadowTransmittance(const ProfileInputs& in, const glm::dvec3& p) {
 // colour (rgb, lit) and opacity per unit length.
 glm::dvec4 compositeSample(const ProfileInputs& in, const RaySample& s, const glm::dvec3& dir, double step) {
     glm::dvec4 c;
-    if (in.on("preintegrated"))
+    if (in.sceneClassifier)
+        c = in.sceneClassifier->classify(s.position, s.value);
+    else if (in.on("preintegrated"))
         c = preintegratedSegment(*in.tf, s.value, in.reader.sample(s.position + step * dir), in.scene.step);
     else
         c = in.on("preclassify") ? classifyPre(in, s.position) : glm::dvec4(in.tf->evaluate(s.value));
@@ -577,15 +535,18 @@ RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, i
     // for compositing without one the engine's fallback, a white ramp over
     // the window from opacity 0 to 0.1 per unit length (render_engine.h).
     std::optional<TransferFunction> tf = scene.transferFunction;
-    if (!tf && renderer.needsTransferFunction())
-        tf = TransferFunction({{window.x, glm::vec3(1.0f), 0.0f}, {window.y, glm::vec3(1.0f), 0.1f}});
+    if (!tf && renderer.needsTransferFunction()) tf = defaultCompositingFunction(window);
     const Lighting lighting(values, cam, range.y - range.x);
     auto flag = [&](const char* name) {
         const auto it = values.find(name);
         return it != values.end() && it->second != 0.0;
     };
     const GradientReader gradients(reader, flag("sobel"), flag("precomputed_gradients"));
-    const ProfileInputs in{volume, scene, values, reader, gradients, lighting, tf ? &*tf : nullptr, window};
+    // A label map or a second volume replaces the classification (composite).
+    const std::unique_ptr<ProfileSceneClassifier> sceneClassifier =
+        profile.model == ProfileModel::Composite && tf ? ProfileSceneClassifier::make(scene, volume, *tf) : nullptr;
+    const ProfileInputs in{volume, scene, values, reader, gradients, lighting, tf ? &*tf : nullptr, window,
+                           sceneClassifier.get()};
 
     switch (profile.model) {
         case ProfileModel::Composite: profileComposite(profile, in); break;

@@ -53,10 +53,6 @@ glm::dvec2 pointRange(const TransferFunction& f) {
 
 }  // namespace
 
-TransferFunction defaultCompositingFunction(glm::dvec2 window) {
-    return TransferFunction({{window.x, glm::vec3(1.0f), 0.0f}, {window.y, glm::vec3(1.0f), 0.1f}});
-}
-
 glm::vec2 uploadVolumeTexture(unsigned texture, const Volume& volume) {
     const glm::ivec3 d = volume.dims();
     glBindTexture(GL_TEXTURE_3D, texture);

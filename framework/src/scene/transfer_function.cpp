@@ -213,4 +213,8 @@ TransferFunction TransferFunction::ramp(double lo, double hi) {
     return TransferFunction({{lo, glm::vec3(1.0f), 0.0f}, {hi, glm::vec3(1.0f), 1.0f}});
 }
 
+TransferFunction defaultCompositingFunction(glm::dvec2 window) {
+    return TransferFunction({{window.x, glm::vec3(1.0f), 0.0f}, {window.y, glm::vec3(1.0f), 0.1f}});
+}
+
 }  // namespace voxlab

@@ -360,3 +360,43 @@ TEST_F(ViewerWindow, KeepOpenLeavesTheWindowToThePersonAfterTheScript) {
 
 }  // namespace
 }  // namespace voxlab::testing
+
+// Clip planes in the viewer: the plane's outline and handle are drawn over
+// the image, and dragging the handle along the arrow moves the plane along
+// its normal (the kept side shrinks); a plane the scene does not have is a
+// one-line error.
+namespace voxlab::testing {
+namespace {
+
+TEST_F(ViewerWindow, AClipPlaneHandleDragsThePlaneAlongItsNormal) {
+    std::ofstream(path("clip.json")) << R"({"dataset": "phantom:sphere:48", "renderer": "mip",
+        "camera": {"azimuth": 30, "elevation": 20},
+        "clip_planes": [{"point": [24, 24, 24], "normal": [1, 0, 0]}]})";
+    const CommandResult r = play("scene " + path("clip.json") + "\npanel tf off\npanel controls off\nwait 2\nscreenshot " +
+                                 path("before.png") + "\ndrag-plane 1 60 0\nwait 2\nscreenshot " + path("after.png") +
+                                 "\nquit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    const Image before = loadPng(path("before.png")), after = loadPng(path("after.png"));
+    const glm::vec3 handle(1.0f, 200 / 255.0f, 60 / 255.0f);
+    const Region all{0, 0, before.width, before.height};
+    EXPECT_GT(countColour(before, all, handle), 50) << "no plane outline or handle drawn";
+    // The sphere's visible part: grey pixels that are not the widget's colour.
+    const auto lit = [&](const Image& img) {
+        int n = 0;
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x) {
+                const glm::vec4 c = img.at(x, y);
+                n += c.r > 0.2f && std::abs(c.r - c.b) < 0.05f;
+            }
+        return n;
+    };
+    std::printf("sphere pixels: %d before the drag, %d after\n", lit(before), lit(after));
+    EXPECT_LT(lit(after), lit(before) * 0.8) << "dragging along the normal should cut more away";
+    EXPECT_GT(lit(after), 100);
+    const CommandResult bad = play("scene " + path("clip.json") + "\ndrag-plane 2 10 0\nquit\n");
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.err.find("the scene has 1 clip planes"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace voxlab::testing

@@ -31,6 +31,8 @@
 //   panel slices|tf|tf2d|profile|help|controls on|off
 //   enlarge axial|coronal|sagittal|off   the slices panel with one view enlarged (off: all three)
 //   click X Y                      a left click at window pixel (X, Y)
+//   drag-plane N DX DY             press on clip plane N's handle (1-based; it must be
+//                                  there to grab) and move the mouse by (DX, DY) window pixels
 //   key left|right|up|down|pageup|pagedown|home|end|plus|minus
 //                                  press and release a key, as a person would (a deck's
 //                                  arrows, the UI scale's + and -)

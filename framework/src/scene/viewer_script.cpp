@@ -145,6 +145,14 @@ public:
             if (integerAt(2, msg) <= 0) fail(msg, 2);
             return;
         }
+        if (c == "drag-plane") {
+            const char* msg = "expected a clip plane's number (1..6) and DX DY in window pixels";
+            exactly(3, msg);
+            const int n = integerAt(0, msg);
+            if (n < 1 || n > int(kMaxClipPlanes)) fail(msg, 0);
+            numberAt(1, msg), numberAt(2, msg);
+            return;
+        }
         if (c == "rotate" || c == "click") {
             const char* msg = "expected 2 numbers";
             exactly(2, msg);
@@ -241,7 +249,7 @@ private:
 
 constexpr const char* kCommands[] = {
     "load", "scene", "renderer", "param", "step", "interpolation", "tf", "tf2d", "camera", "rotate",
-    "key", "ui-scale", "slide", "enlarge", "window", "samples", "skipping", "split", "divider", "right", "drag", "implementation", "panel", "click", "size", "wait", "screenshot", "quit"};
+    "key", "ui-scale", "slide", "enlarge", "window", "samples", "skipping", "split", "divider", "right", "drag", "drag-plane", "implementation", "panel", "click", "size", "wait", "screenshot", "quit"};
 
 }  // namespace
 

@@ -48,13 +48,24 @@ void handleMouse(GLFWwindow* window, State& s) {
     const bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
     const glm::ivec2 px = imagePixel(s, x, y, window);
     const bool nearDivider = s.split == SplitMode::Split && std::abs(px.x - s.divider * s.fbWidth) < 8 * s.contentScale;
-    const bool startable = !io.WantCaptureMouse && !s.dragging && !s.panning && !s.draggingDivider;
-    if (startable && left && nearDivider) s.draggingDivider = true;
+    const bool startable =
+        !io.WantCaptureMouse && !s.dragging && !s.panning && !s.draggingDivider && s.draggingPlane < 0;
+    const int plane = startable && left && !shift ? clipPlaneAt(s, x, y) : -1;
+    if (plane >= 0) s.draggingPlane = plane;
+    else if (startable && left && nearDivider) s.draggingDivider = true;
     else if (startable && left && !shift) s.dragging = true, s.pressX = x, s.pressY = y, s.moved = false;
     else if (startable && (other || (left && shift))) s.panning = true, s.moved = true;
 
     const double dx = x - s.lastX, dy = y - s.lastY;
     const glm::ivec2 last = imagePixel(s, s.lastX, s.lastY, window);
+    if (s.draggingPlane >= 0) {  // a clip plane's handle: along the plane's normal
+        if (dx != 0 || dy != 0) {
+            dragClipPlane(s, s.draggingPlane, dx, dy);
+            s.dirty = true;
+            s.lastInput = Clock::now();
+        }
+        if (!left) s.draggingPlane = -1;
+    }
     if (s.draggingDivider) {
         s.divider = std::clamp(float(px.x) / float(std::max(1, s.fbWidth)), 0.02f, 0.98f);
         if (!left) s.draggingDivider = false;

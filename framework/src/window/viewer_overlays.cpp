@@ -236,6 +236,7 @@ void drawOverlays(State& s) {
         const Camera camera = Camera::make(s.scene.camera, s.volume->extent(), s.fbWidth, s.fbHeight);
         drawSlicePlanes(bg, camera, s.volume->extent(), s.volume->spacing(), s.slices.voxel, ImVec2(0, 0), size);
     }
+    if (s.volume) drawClipPlanes(s, bg);  // under the panels, over the image
     splitOverlay(s, fg, size, scale);
     profileMarker(s, fg, size, scale);
     deckCaption(s, fg, size, scale);

@@ -158,6 +158,8 @@ void techniquePanel(State& s) {
     }
     if (ImGui::SmallButton("reset")) s.scene.camera = CameraSpec(), s.dirty = true;
 
+    if (sceneVolumeSections(s)) s.dirty = true;
+
     sectionTitle("split view (S)");
     int split = int(s.split);
     const char* modes = s.hasReference ? "off\0student | reference\0difference\0"
@@ -246,6 +248,19 @@ void transferFunctionPanel(State& s) {
         if (TransferFunction2DEditor("##tf2d", &*s.scene.transferFunction2D, *s.histogram2D, &s.selectedWidget))
             s.dirty = true;
         return ImGui::End();
+    }
+    // A label's own function, when the labels section chose one.
+    if (s.scene.labels && s.editedLabel >= 0) {
+        for (LabelClass& c : s.scene.labels->classes)
+            if (c.label == s.editedLabel && c.transferFunction) {
+                ImGui::Text("label %d%s%s", c.label, c.name.empty() ? "" : ": ", c.name.c_str());
+                if (!s.histogram) s.histogram = volume.histogram();
+                TransferFunctionEditorOptions options;
+                options.histogram = &*s.histogram;
+                options.range = volume.valueRange();
+                if (TransferFunctionEditor("##labeltf", &*c.transferFunction, options, &s.selectedPoint)) s.dirty = true;
+                return ImGui::End();
+            }
     }
     bool use = s.scene.transferFunction.has_value();
     if (ImGui::Checkbox("use a transfer function", &use)) {

@@ -79,6 +79,9 @@ void loadDataset(State& s, const std::string& path) {
     scene.transferFunction2D.reset();
     scene.roi.reset();
     scene.cuttingPlane.reset();
+    scene.labels.reset();  // on another grid
+    scene.fusion.reset();
+    scene.clipPlanes.clear();
     setScene(s, scene, s.scenePath);
 }
 
@@ -99,6 +102,8 @@ void setScene(State& s, const Scene& scene, const std::string& scenePath) {
     s.tfMessage.clear();
     s.profile.reset();
     s.history = TransferFunctionHistory();
+    s.editedLabel = -1;
+    s.labelCountsPath.clear();  // counted again against this scene's volume
     s.dirty = true;
 }
 

@@ -101,6 +101,15 @@ bool viewStep(State& s, const ViewerStep& st) {
         s.sliceViewer->enlarged = v == "axial" ? kAxialAxis : v == "coronal" ? kCoronalAxis : v == "sagittal" ? kSagittalAxis : -1;
     } else if (c == "click") {
         pickRayProfile(s, glm::ivec2(integer(st, 0), integer(st, 1)));
+    } else if (c == "drag-plane") {
+        // Through the handle's hit test, as the mouse would.
+        const int index = integer(st, 0) - 1;
+        if (index >= int(s.scene.clipPlanes.size()))
+            failStep(st, "the scene has " + std::to_string(s.scene.clipPlanes.size()) + " clip planes");
+        const ClipPlaneHandle handle = clipPlaneHandles(s)[std::size_t(index)];
+        if (!handle.visible || clipPlaneAt(s, handle.centre.x, handle.centre.y) != index)
+            failStep(st, "clip plane " + std::to_string(index + 1) + "'s handle cannot be grabbed in this view");
+        dragClipPlane(s, index, number(st, 1), number(st, 2));
     } else if (c == "ui-scale") {
         applyUiScale(s, float(number(st, 0)), s.windowScale);
     } else if (c == "slide") {

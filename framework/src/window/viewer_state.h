@@ -26,6 +26,7 @@
 
 struct GLFWwindow;
 struct ImFont;
+struct ImDrawList;
 
 namespace voxlab::viewer {
 
@@ -127,6 +128,13 @@ struct State {
     std::unique_ptr<ShaderProgram> presenter;  // shaders/viewer/split_view.frag
     unsigned presenterVao = 0;
 
+    // The scene's other volumes and clip planes (viewer_scene_volumes.cpp).
+    int editedLabel = -1;            // the label class whose function the editor edits; -1: the scene's
+    std::string labelPathField, fusionPathField;
+    std::vector<std::uint64_t> labelCounts;  // voxels per label of the label map ...
+    std::string labelCountsPath;             // ... read from this file
+    int draggingPlane = -1;          // the clip plane whose handle the mouse drags
+
     // A demo deck (voxlab/deck.h): the slide shown, stepped by arrow keys.
     std::optional<Deck> deck;
     int slide = 0;
@@ -172,6 +180,21 @@ void updateStubNotice(State& s);    // rescans the main side's stage folders for
 void drawPanels(State& s);
 void drawOverlays(State& s);
 std::string parameterLabel(const std::string& name);  // "early_termination" -> "early termination"
+
+// viewer_scene_volumes.cpp: the labels, fusion and clip-plane sections of
+// the control panel (true when the scene changed), and the clip planes'
+// widgets over the image (display coordinates).
+bool sceneVolumeSections(State& s);
+struct ClipPlaneHandle {
+    bool visible = false;
+    glm::vec2 centre{0.0f}, tip{0.0f};  // the handle and its arrow along the normal
+    double arrowLength = 0.0;           // world units the arrow stands for
+    std::vector<glm::vec2> outline;     // the plane's polygon on the box
+};
+std::vector<ClipPlaneHandle> clipPlaneHandles(const State& s);
+void drawClipPlanes(const State& s, ImDrawList* fg);
+int clipPlaneAt(const State& s, double x, double y);  // the plane whose handle is there, or -1
+void dragClipPlane(State& s, int index, double dx, double dy);
 
 // viewer_style.cpp
 float clampUiScale(float scale);  // to quarter steps in [0.75, 4]

@@ -43,7 +43,8 @@ int infoCommand(int argc, char** argv) {
     if (args.has("help") || args.positionals().size() != 1) {
         std::cout << "usage: voxlab info DATASET [--bins N] [--max-volume-mib MIB]\n\n"
                      "Prints a volume's dimensions, voxel type, spacing, value range and histogram.\n"
-                     "DATASET is a file (.nrrd .nhdr .fld .dat) or a phantom (phantom:NAME[:N]).\n\n"
+                     "DATASET is a file (.nrrd .nhdr .fld .dat), a DICOM series (a folder, or one of\n"
+                     "its files), or a phantom (phantom:NAME[:N]).\n\n"
                   << formatOptions(specs);
         return args.has("help") ? 0 : 2;
     }
@@ -55,6 +56,9 @@ int infoCommand(int argc, char** argv) {
     const glm::ivec3 d = v.dims();
     const glm::dvec3 s = v.spacing(), e = v.extent();
     std::printf("dataset:  %s\n", v.name().c_str());
+    // What the loader knows of the source (a DICOM series: description, modality, slices, ...).
+    for (const auto& [key, value] : v.metadata())
+        std::printf("%-9s %s\n", (key + ":").c_str(), value.c_str());
     std::printf("dims:     %d x %d x %d (%zu voxels)\n", d.x, d.y, d.z, v.voxelCount());
     std::printf("type:     %s (%zu bytes/voxel, %.1f MiB)\n", voxelTypeName(v.type()), voxelTypeSize(v.type()),
                 double(v.bytes().size()) / (1024.0 * 1024.0));

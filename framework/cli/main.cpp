@@ -21,8 +21,9 @@ void usage(std::ostream& out) {
            "  check [--stage S]      check your assignments/ against the expected images\n"
            "  grade --submission DIR grade a submission (or --batch DIR, a class) against the reference\n"
            "  help                   this text\n\n"
-           "Every command takes --help. Datasets are files (.nrrd .nhdr .fld .dat) or phantoms such as\n"
-           "phantom:marschner-lobb:64; bare names are also looked up in the project's datasets/ folder.\n";
+           "Every command takes --help. Datasets are files (.nrrd .nhdr .fld .dat), DICOM series (a folder\n"
+           "or one of its files) or phantoms such as phantom:marschner-lobb:64; bare names are also looked\n"
+           "up in the project's datasets/ folder.\n";
 }
 
 }  // namespace

@@ -13,7 +13,11 @@ writes DIR/NAME/* for every target, from the repository's own files:
   scene          datasets/scenes, tests/golden/scenes, reference/*/scenes;
   tf, tf2d       datasets/tf, datasets/tf2d;
   viewer_script  scripts using every command;
-  deck           datasets/decks and a deck with every kind of slide.
+  deck           datasets/decks and a deck with every kind of slide;
+  dicom          pairs of neighbouring 4x4 slices of the datasets as DICOM
+                 files, written here byte by byte (explicit and implicit VR
+                 little endian, explicit big endian, RLE lossless; with and
+                 without a rescale), plus a single slice and a truncated one.
 Every seed is small (under 4 KiB): the big volumes give only their headers
 and a few hundred bytes. Two-file seeds join the files with the separator of
 fuzz_common.h (kDataSeparator). Nothing is downloaded; the output is
@@ -261,6 +265,105 @@ quit
     corpus.add("viewer_script", "load bonsai.nrrd\r\nsplit on\r\nright same\r\npanel tf2d off\r\n")
 
 
+# ---- DICOM (PS3.5, PS3.10): just enough of a writer for seeds ----------------
+
+EXPLICIT_LE, IMPLICIT_LE, EXPLICIT_BE = "1.2.840.10008.1.2.1", "1.2.840.10008.1.2", "1.2.840.10008.1.2.2"
+RLE = "1.2.840.10008.1.2.5"
+LONG_VRS = {"OB", "OW", "SQ", "UN", "UT"}
+
+
+def dicom_element(group, element, vr, value, syntax):
+    """One data element; `value` is bytes (already in the syntax's byte order)."""
+    if len(value) % 2:
+        value += b"\0" if vr in ("UI", "OB") else b" "
+    big = syntax == EXPLICIT_BE and group != 2
+    e = ">" if big else "<"
+    head = struct.pack(e + "HH", group, element)
+    if syntax == IMPLICIT_LE and group != 2:
+        return head + struct.pack("<I", len(value)) + value
+    if vr in LONG_VRS:
+        return head + vr.encode() + b"\0\0" + struct.pack(e + "I", len(value)) + value
+    return head + vr.encode() + struct.pack(e + "H", len(value)) + value
+
+
+def rle_segment(data):
+    """PackBits with literal runs only (PS3.5 G.3.1)."""
+    out = b""
+    for i in range(0, len(data), 128):
+        chunk = data[i:i + 128]
+        out += bytes([len(chunk) - 1]) + chunk
+    return out + (b"\0" if len(out) % 2 else b"")
+
+
+def dicom_file(k, pixels, bits, signed, syntax, rescale):
+    """A 4x4 CT slice k at z = 1.5 k; pixels: 16 values."""
+    big = syntax == EXPLICIT_BE
+    us = lambda v: struct.pack(">H" if big else "<H", v)
+    text = lambda t: t.encode()
+    fmt = {(8, 0): "B", (8, 1): "b", (16, 0): "H", (16, 1): "h"}[(bits, signed)]
+    raw = struct.pack((">" if big else "<") + fmt * 16, *pixels)
+    elements = [
+        (0x0008, 0x0016, "UI", text("1.2.840.10008.5.1.4.1.1.2")),
+        (0x0008, 0x0018, "UI", text("1.2.826.0.1.3680043.8.498.%d" % (k + 1))),
+        (0x0008, 0x0060, "CS", text("CT")),
+        (0x0008, 0x103E, "LO", text("fuzz seed")),
+        (0x0020, 0x000E, "UI", text("1.2.826.0.1.3680043.8.498.100")),
+        (0x0020, 0x0013, "IS", text(str(9 - k))),
+        (0x0020, 0x0032, "DS", text("-1.5\\2\\%g" % (1.5 * k))),
+        (0x0020, 0x0037, "DS", text("1\\0\\0\\0\\1\\0")),
+        (0x0028, 0x0002, "US", us(1)),
+        (0x0028, 0x0004, "CS", text("MONOCHROME2")),
+        (0x0028, 0x0010, "US", us(4)),
+        (0x0028, 0x0011, "US", us(4)),
+        (0x0028, 0x0030, "DS", text("0.5\\0.25")),
+        (0x0028, 0x0100, "US", us(bits)),
+        (0x0028, 0x0101, "US", us(bits)),
+        (0x0028, 0x0102, "US", us(bits - 1)),
+        (0x0028, 0x0103, "US", us(signed)),
+    ]
+    if rescale:
+        elements += [(0x0028, 0x1052, "DS", text("-1024")), (0x0028, 0x1053, "DS", text("2"))]
+    body = b"".join(dicom_element(g, e, vr, v, syntax) for g, e, vr, v in elements)
+    if syntax == RLE:
+        planes = [bytes(raw[i::bits // 8]) for i in range(bits // 8)][::-1]  # most significant byte first
+        segments = [rle_segment(p) for p in planes]
+        header = struct.pack("<I", len(segments))
+        offset = 64
+        for seg in segments:
+            header += struct.pack("<I", offset)
+            offset += len(seg)
+        frame = header + bytes(64 - len(header)) + b"".join(segments)
+        item = lambda data: struct.pack("<HHI", 0xFFFE, 0xE000, len(data)) + data
+        body += struct.pack("<HH", 0x7FE0, 0x0010) + b"OB\0\0" + struct.pack("<I", 0xFFFFFFFF)
+        body += item(b"") + item(frame) + struct.pack("<HHI", 0xFFFE, 0xE0DD, 0)
+    else:
+        body += dicom_element(0x7FE0, 0x0010, "OW" if bits == 16 else "OB", raw, syntax)
+    meta = b"".join(dicom_element(2, e, vr, v, EXPLICIT_LE) for e, vr, v in [
+        (0x0001, "OB", b"\0\1"), (0x0002, "UI", text("1.2.840.10008.5.1.4.1.1.2")),
+        (0x0003, "UI", text("1.2.826.0.1.3680043.8.498.%d" % (k + 1))), (0x0010, "UI", text(syntax))])
+    meta = dicom_element(2, 0, "UL", struct.pack("<I", len(meta)), EXPLICIT_LE) + meta
+    return bytes(128) + b"DICM" + meta + body
+
+
+def dicom_seeds(root, corpus):
+    n = DIMS[0] * DIMS[1]  # one 4x4 slice
+    for name, t, data in volumes(root):
+        if t not in ("uchar", "ushort", "short"):
+            continue
+        size = ELEMENT[t]
+        values = list(struct.unpack("<" + {"uchar": "B", "ushort": "H", "short": "h"}[t] * (2 * n),
+                                    data[:2 * n * size]))
+        bits, signed = (8, 0) if t == "uchar" else (16, 1 if t == "short" else 0)
+        for syntax in (EXPLICIT_LE, IMPLICIT_LE, EXPLICIT_BE, RLE):
+            for rescale in (False, True):
+                a = dicom_file(0, values[:n], bits, signed, syntax, rescale)
+                b = dicom_file(1, values[n:], bits, signed, syntax, rescale)
+                corpus.add("dicom", a + SEPARATOR + b)
+        one = dicom_file(0, values[:n], bits, signed, EXPLICIT_LE, False)
+        corpus.add("dicom", one)  # one slice only
+        corpus.add("dicom", one + SEPARATOR + one[:len(one) - 20])  # the second cut short
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--root", required=True, help="the voxlab repository")
@@ -275,6 +378,7 @@ def main():
     json_seeds(args.root, corpus)
     script_seeds(corpus)
     deck_seeds(args.root, corpus)
+    dicom_seeds(args.root, corpus)
     for target in sorted(os.listdir(args.out)):
         print("fuzz corpus %-14s %3d seeds" % (target, len(os.listdir(os.path.join(args.out, target)))))
 

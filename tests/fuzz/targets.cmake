@@ -10,7 +10,8 @@ set(VOXLAB_FUZZ_TARGETS
   tf              # 1D transfer function
   tf2d            # 2D transfer function
   viewer_script   # viewer scripts
-  deck)           # demo decks
+  deck            # demo decks
+  dicom)          # DICOM series of two files (through GDCM)
 
 # The parsers and what they call; nothing that needs OpenGL.
 set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
@@ -20,6 +21,8 @@ set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
   src/volume/fld_loader.cpp
   src/volume/dat_raw_loader.cpp
   src/volume/load_volume.cpp
+  src/volume/dicom_loader.cpp
+  src/volume/dicom_child.cpp
   src/volume/phantoms.cpp
   src/scene/scene.cpp
   src/scene/json_text.cpp

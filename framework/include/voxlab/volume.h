@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -95,6 +96,14 @@ public:
     // Histogram over [minValue, maxValue].
     Histogram histogram(int bins = 256) const;
 
+    // What the loader learnt about where the voxels came from, as ordered
+    // (key, value) pairs that `voxlab info` prints one per line: a DICOM
+    // series gives its Series Description, Modality, slices, orientation and
+    // rescale. Empty for formats that carry nothing of the kind.
+    using Metadata = std::vector<std::pair<std::string, std::string>>;
+    const Metadata& metadata() const { return metadata_; }
+    void setMetadata(Metadata metadata) { metadata_ = std::move(metadata); }
+
 private:
     std::string name_;
     glm::ivec3 dims_{0};
@@ -103,17 +112,36 @@ private:
     std::vector<std::uint8_t> bytes_;
     double min_ = 0.0;
     double max_ = 0.0;
+    Metadata metadata_;
 };
 
 // Loads a volume from a path or a phantom spec, choosing the loader by
-// extension (.nrrd/.nhdr, .fld, .dat) or the "phantom:" prefix. Throws
-// voxlab::Error with a one-line message naming the file and the problem.
+// extension (.nrrd/.nhdr, .fld, .dat) or the "phantom:" prefix. A folder, a
+// .dcm/.dicom/.ima file, and any other file whose bytes 128..131 are "DICM"
+// go to loadDicom. Throws voxlab::Error with a one-line message naming the
+// file and the problem.
 Volume loadVolume(const std::string& pathOrSpec);
 
 // Individual loaders (see framework/src/volume/).
 Volume loadNrrd(const std::string& path);
 Volume loadFld(const std::string& path);
 Volume loadDatRaw(const std::string& path);
+
+// A DICOM CT/MR series, read through GDCM (framework/src/volume/dicom_loader.cpp).
+// `path` is a folder holding one series, or any one file of a series (the
+// series is then that file's Series Instance UID among the files beside it).
+// Voxel layout: x = DICOM columns, y = rows (Pixel Spacing's second and first
+// value), z = slices in increasing position along the slice normal
+// (row cosine x column cosine), whatever the files' names or Instance
+// Numbers. Values are rescaled by Rescale Slope/Intercept (Hounsfield units
+// for CT): int16 when every value is then an integer in int16's range, else
+// float32; without a rescale, 8-bit data stays uint8 and 16-bit data uint16 or
+// int16 (Pixel Representation). An oblique series is loaded on its own axes.
+// The volume's metadata() names the series, modality, slices, orientation
+// and rescale. A mixed or incomplete series, a transfer syntax GDCM cannot
+// decode, a missing tag, a single slice or a size over the volume cap give a
+// one-line voxlab::Error that starts with `path`.
+Volume loadDicom(const std::string& path);
 
 // Writes an attached, raw (or gzip) NRRD through writeFileAtomically (a
 // failed save leaves the old file). Used by tests and tools.

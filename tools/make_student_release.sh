@@ -6,7 +6,7 @@
 #
 # OUT_DIR receives the framework, shaders, the starter code (assignments/,
 # with every stage's handout, grading scenes and manifest), the datasets,
-# the docs, tools/setup.sh, and expected/: the golden outputs of every
+# the docs, tools/setup.sh and tools/nrrd_to_dicom.py, and expected/: the golden outputs of every
 # grading scene and function check, rendered here from reference/, which
 # `voxlab check` compares a student's work with. reference/, the tests and
 # bench/ are left out (they hold or use the solution); of tests/ only the
@@ -61,6 +61,7 @@ for item in CMakeLists.txt framework shaders assignments datasets docs; do
 done
 mkdir -p "$out/tools"
 cp "$root/tools/setup.sh" "$out/tools/"
+cp "$root/tools/nrrd_to_dicom.py" "$out/tools/"   # a DICOM series from a dataset (datasets/README.md)
 cp "$root/README.md" "$out/README_framework.md"   # the framework's full guide
 cat > "$out/README.md" <<'MD'
 # voxlab (student release)

@@ -71,7 +71,8 @@ TEST_F(FunctionChecks, ListsOneCheckPerStageWithADescription) {
         {"iso_hit_random_rays", "iso"},      {"mip_random_rays", "mip"},
         {"minip_random_rays", "minip"},      {"average_random_rays", "average"},
         {"gradient_opacity_random", "gradient_opacity"}, {"attenuated_mip_random_rays", "attenuated_mip"},
-        {"preintegrate_segment_random", "preintegration"}, {"light_transmittance_random", "shadows"}};
+        {"preintegrate_segment_random", "preintegration"}, {"light_transmittance_random", "shadows"},
+        {"cubic_random_points", "cubic"}};
     std::map<std::string, std::string> listed;
     for (const FunctionCheckInfo& info : functionChecks()) {
         listed[info.name] = info.stage;

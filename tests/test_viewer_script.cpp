@@ -130,7 +130,7 @@ TEST(ViewerScript, ErrorsNameFileAndLine) {
         {"param x yes", "demo.vs:1: param: expected a name and a number (or true/false), got 'yes'"},
         {"step 0", "demo.vs:1: step: expected 1 number > 0, got '0'"},
         {"step", "demo.vs:1: step: expected 1 number > 0"},
-        {"interpolation linear", "demo.vs:1: interpolation: expected nearest, trilinear or hardware, got 'linear'"},
+        {"interpolation linear", "demo.vs:1: interpolation: expected nearest, trilinear, hardware, bspline or catmull-rom, got 'linear'"},
         {"tf", "demo.vs:1: tf: expected 1 path or 'none'"},
         {"camera", "demo.vs:1: camera: expected settings, e.g. 'camera azimuth 40 elevation 25'"},
         {"camera azimut 4",

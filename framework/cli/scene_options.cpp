@@ -24,7 +24,7 @@ std::vector<OptionSpec> sceneOptions() {
         {"projection", "P", "orthographic or perspective"},
         {"size", "WxH", "image size in pixels"},
         {"step", "S", "sample spacing along rays, in units of the smallest voxel spacing"},
-        {"interpolation", "I", "nearest, trilinear (in the shader) or hardware (GPU filtering)"},
+        {"interpolation", "I", "nearest, trilinear (in the shader), hardware (GPU filtering), bspline or catmull-rom (cubic)"},
         {"skip-empty-space", "on|off", "leap over bricks that cannot change the image (default on)"},
         {"window", "LO,HI", "grey window in data units (default: the data's min,max)"},
         {"tf", "FILE", "1D transfer function (JSON control points)"},

@@ -5,8 +5,8 @@
 // size is read at the same place in the box, i.e. resampled onto it by its
 // own voxel coordinates. It is classified by its own transfer function
 // (u_tf2, the same table layout as u_tf) and read as the scene's
-// interpolation says: nearest, or trilinear in float here (the hardware
-// setting also gets this trilinear).
+// interpolation says: nearest, or else trilinear in float here (hardware
+// and the cubic interpolations get this trilinear too).
 //
 // classify_fused(p, first) combines the first volume's classification at p
 // with the second's, both colour (rgb) and opacity per unit length (a):

@@ -10,6 +10,8 @@
 //                          that estimator at the voxels (u_gradient_volume,
 //                          filtered linearly); 0: estimate on the fly here.
 // The on-the-fly estimators are the "gradient" stage (gradient/gradient.glsl).
+// With a cubic interpolation (3, 4) the gradient is the cubic kernel's own
+// derivative instead (gradient_cubic, the "cubic" stage), whatever these say.
 #ifndef VOXLAB_GRADIENTS_GLSL
 #define VOXLAB_GRADIENTS_GLSL
 
@@ -21,6 +23,7 @@ uniform int u_precomputed_gradients;
 uniform sampler3D u_gradient_volume;
 
 vec3 gradient_at(vec3 p) {
+    if (u_interpolation >= 3) return gradient_cubic(p);  // the cubic kernel's own derivative
     if (u_precomputed_gradients != 0) return textureLod(u_gradient_volume, p / u_volume_extent, 0.0).xyz;
     return u_sobel != 0 ? gradient_sobel(p) : gradient_central(p);
 }

@@ -7,7 +7,8 @@
 // sample_volume(p) reads between voxels as the scene's "interpolation" says
 // (u_interpolation): 0 nearest and 1 trilinear, both written out in the
 // "sampling" stage (sampling/sampling.glsl) from voxel_value(); 2 the GPU's
-// own linear filtering ("hardware").
+// own linear filtering ("hardware"); 3 the cubic B-spline and 4 Catmull-Rom,
+// the "cubic" stage (cubic/cubic.glsl).
 #ifndef VOXLAB_VOLUME_GLSL
 #define VOXLAB_VOLUME_GLSL
 
@@ -35,11 +36,13 @@ vec3 voxel_coordinates(vec3 p) {
 }
 
 #include "sampling/sampling.glsl"
+#include "cubic/cubic.glsl"
 
 // The data value at world position p.
 float sample_volume(vec3 p) {
     if (u_interpolation == 0) return sample_nearest(p);
     if (u_interpolation == 1) return sample_trilinear(p);
+    if (u_interpolation >= 3) return sample_cubic(p);
     return textureLod(u_volume, p / u_volume_extent, 0.0).r * u_value_scale + u_value_offset;
 }
 

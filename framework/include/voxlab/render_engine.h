@@ -9,7 +9,8 @@
 //   u_step (world units), u_step_units (in smallest spacings), u_window,
 //   u_tf, u_tf_range, u_tf_size, u_has_tf, u_background, u_value_range,
 //   u_interpolation, u_roi_min/max, u_clip_plane/point/normal, u_layer,
-//   u_gradient_volume, u_tf2d_*, u_bricks, u_brick_extent, u_brick_count
+//   u_gradient_volume, u_bspline_coefficients (the "bspline" interpolation),
+//   u_tf2d_*, u_bricks, u_brick_extent, u_brick_count
 //   (empty-space skipping, see empty_space.h), and u_PARAM for each declared
 //   renderer parameter.
 //
@@ -162,6 +163,7 @@ private:
     void drawCut(const Scene& scene, unsigned framebuffer);
     void uploadTransferFunction(TransferFunctionSlot& slot, const TransferFunction& tf);
     void uploadGradients(GradientEstimator estimator);
+    void uploadBsplineCoefficients();  // once per volume, for the "bspline" interpolation
     void ensureTarget(int width, int height);
     void ensureLayers(int width, int height);
     // Empty-space skipping (render_engine_bricks.cpp): builds the brick grid
@@ -188,6 +190,8 @@ private:
     unsigned gradientTexture_ = 0;
     std::optional<GradientEstimator> gradientEstimator_;
     unsigned long volumeGeneration_ = 0, gradientGeneration_ = 0;
+    unsigned bsplineTexture_ = 0;
+    unsigned long bsplineGeneration_ = 0;
     // Object-order drawing: a vertex buffer for proxy geometry, and the
     // volume as three stacks of 2D slices (built on first use per volume).
     unsigned geometryVao_ = 0, geometryVbo_ = 0;

@@ -58,8 +58,16 @@ namespace voxlab {
 //   trilinear  the 8 surrounding voxels blended in the shader, in float
 //              (the "sampling" stage, reference/sampling/sampling.glsl);
 //   hardware   the GPU's own linear texture filtering (fast; on many GPUs
-//              its weights have only 8 bits).
-enum class Interpolation { Nearest, Trilinear, Hardware };
+//              its weights have only 8 bits);
+//   bspline    the cubic B-spline of the 4x4x4 voxels around the point, on
+//              coefficients prefiltered so that it interpolates the voxels
+//              (bspline.h), smooth (C2), no overshoot of the coefficients;
+//   catmull-rom  the Catmull-Rom cubic of the 4x4x4 voxels: interpolates
+//              them directly, C1, reproduces quadratics, may overshoot.
+// The two cubic ones are the "cubic" stage (reference/cubic/cubic.glsl);
+// with them gradients are the kernel's own derivative.
+enum class Interpolation { Nearest, Trilinear, Hardware, BSpline, CatmullRom };
+inline bool isCubic(Interpolation i) { return i == Interpolation::BSpline || i == Interpolation::CatmullRom; }
 const char* interpolationName(Interpolation i);
 Interpolation parseInterpolation(const std::string& name);  // throws voxlab::Error
 

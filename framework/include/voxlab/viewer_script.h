@@ -10,7 +10,7 @@
 //   renderer NAME
 //   param NAME VALUE               a renderer parameter: a number, true or false
 //   step X                         sampling step (voxels), > 0
-//   interpolation nearest|trilinear|hardware
+//   interpolation nearest|trilinear|hardware|bspline|catmull-rom
 //   tf PATH|none                   a transfer-function file, or none
 //   tf2d PATH|none                 a 2D transfer-function file (tf2d renderer), or none
 //   camera SETTING VALUE...        settings: azimuth A, elevation E, distance D,

@@ -41,6 +41,8 @@ public:
           spacing_(reader.volume().spacing()), minSpacing_(reader.volume().minSpacing()) {}
 
     glm::dvec3 at(const glm::dvec3& p) const {
+        if (isCubic(reader_.interpolation()))  // the cubic kernel's own derivative, per voxel -> per unit length
+            return glm::dvec3(reader_.cubic(p, 0), reader_.cubic(p, 1), reader_.cubic(p, 2)) / spacing_ * minSpacing_;
         if (precomputed_) return precomputedAt(p);
         glm::dvec3 g(0.0);
         for (int axis = 0; axis < 3; ++axis) {

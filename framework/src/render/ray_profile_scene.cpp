@@ -27,9 +27,13 @@ ProfileSceneClassifier::ProfileSceneClassifier(const Scene& scene, const Volume&
             std::vector<std::uint8_t> bytes(d.size() * sizeof(float));
             std::memcpy(bytes.data(), d.data(), bytes.size());
             distance_.emplace(volume.dims(), VoxelType::Float32, volume.spacing(), std::move(bytes), "distance");
+            distanceReader_ = std::make_unique<VolumeReader>(*distance_, Interpolation::Trilinear);  // a texture
         }
     } else {
         second_.emplace(loadVolume(scene.fusion->dataset));
+        // The second volume is read nearest or trilinearly (fusion.glsl), whatever the first's interpolation.
+        secondReader_ = std::make_unique<VolumeReader>(
+            *second_, scene.interpolation == Interpolation::Nearest ? Interpolation::Nearest : Interpolation::Trilinear);
         secondFunction_ = scene.fusion->transferFunction
                               ? *scene.fusion->transferFunction
                               : defaultCompositingFunction(scene.fusion->window.value_or(second_->valueRange()));
@@ -72,15 +76,14 @@ glm::dvec4 ProfileSceneClassifier::labelled(const glm::dvec3& p, double value) c
                              ? nearest != d->to
                              : std::find(d->applyTo.begin(), d->applyTo.end(), nearest) != d->applyTo.end();
     if (!applies) return c;
-    const glm::dvec4 f(d->transferFunction.evaluate(VolumeReader(*distance_, Interpolation::Trilinear).sample(p)));
+    const glm::dvec4 f(d->transferFunction.evaluate(distanceReader_->sample(p)));
     return {glm::dvec3(f), c.a * f.a};
 }
 
 glm::dvec4 ProfileSceneClassifier::fused(const glm::dvec3& p, double value) const {
     const Fusion& f = *scene_.fusion;
     const glm::dvec4 a(sceneFunction_.evaluate(value));
-    const VolumeReader reader(*second_, scene_.interpolation);
-    const glm::dvec4 b(secondFunction_->evaluate(reader.sample(p / volume_.extent() * second_->extent())));
+    const glm::dvec4 b(secondFunction_->evaluate(secondReader_->sample(p / volume_.extent() * second_->extent())));
     switch (f.mode) {
         case FusionMode::Checkerboard: {
             const glm::ivec3 cell(glm::floor(p / (f.checkerSize * volume_.minSpacing())));

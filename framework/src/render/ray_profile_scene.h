@@ -41,6 +41,7 @@ private:
     std::vector<std::uint16_t> labels_;
     std::optional<Volume> distance_, second_;
     std::optional<TransferFunction> secondFunction_;
+    std::unique_ptr<VolumeReader> distanceReader_, secondReader_;
 };
 
 }  // namespace voxlab

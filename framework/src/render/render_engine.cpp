@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "voxlab/bspline.h"
 #include "voxlab/error.h"
 #include "voxlab/scene_volumes.h"
 #include "voxlab_gl.h"
@@ -16,6 +17,7 @@ constexpr int kVolumeUnit = 0;
 constexpr int kTransferFunctionUnit = 1;
 constexpr int kGradientUnit = 2;
 constexpr int kLayerUnit = 3;  // and kLayerUnit + 1 (cut_compose.frag)
+constexpr int kBsplineUnit = 9;  // after the precomputed textures (6, 7)
 
 TransferFunction2D fallbackTransferFunction2D(glm::dvec2 window) {
     Tf2dWidget w;
@@ -72,6 +74,7 @@ RenderEngine::RenderEngine(std::string implementationRoot)
     glGenVertexArrays(1, &vao_);  // core profile: drawing needs a bound VAO
     glGenTextures(1, &volumeTexture_);
     glGenTextures(1, &gradientTexture_);
+    glGenTextures(1, &bsplineTexture_);
     for (TransferFunctionSlot& slot : tf_) glGenTextures(1, &slot.texture);
     sceneVolumes_ = std::make_unique<SceneVolumes>();
     checkGlError("creating the render engine");
@@ -83,6 +86,7 @@ RenderEngine::~RenderEngine() {
     glDeleteVertexArrays(1, &vao_);
     glDeleteTextures(1, &volumeTexture_);
     glDeleteTextures(1, &gradientTexture_);
+    glDeleteTextures(1, &bsplineTexture_);
     for (TransferFunctionSlot& slot : tf_) glDeleteTextures(1, &slot.texture);
     if (fbo_) glDeleteFramebuffers(1, &fbo_);
     if (colorTexture_) glDeleteTextures(1, &colorTexture_);
@@ -141,6 +145,19 @@ void RenderEngine::uploadGradients(GradientEstimator estimator) {
     checkGlError("uploading the gradient volume");
     gradientEstimator_ = estimator;
     gradientGeneration_ = volumeGeneration_;
+}
+
+void RenderEngine::uploadBsplineCoefficients() {
+    if (bsplineGeneration_ == volumeGeneration_) return;
+    const std::vector<float> coefficients = bsplineCoefficients(*volume_);
+    const glm::ivec3 d = volume_->dims();
+    glBindTexture(GL_TEXTURE_3D, bsplineTexture_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, d.x, d.y, d.z, 0, GL_RED, GL_FLOAT, coefficients.data());
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // read with texelFetch
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    checkGlError("uploading the B-spline coefficients");
+    bsplineGeneration_ = volumeGeneration_;
 }
 
 const ShaderProgram& RenderEngine::program(const std::string& vertexShader, const std::string& fragmentShader,
@@ -312,6 +329,7 @@ void RenderEngine::setPassUniforms(const ShaderProgram& prog, const Scene& scene
     }
     prog.set("u_tf", kTransferFunctionUnit);
     prog.set("u_gradient_volume", kGradientUnit);
+    prog.set("u_bspline_coefficients", kBsplineUnit);
 
     const std::vector<Tf2dWidget>& widgets = inputs.widgets;
     prog.set("u_tf2d_count", int(widgets.size()));
@@ -352,8 +370,10 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     if (pass.slot == 0) renderer.checkScene(scene, pass.values);
     sceneVolumes_->prepare(scene, *volume_, volumeGeneration_, inputs.tf);
     // The bricks know the first volume only: a fused second volume can show
-    // anywhere.
-    const bool skipping = scene.skipEmptySpace && !renderer.objectOrder() && !scene.fusion;
+    // anywhere. A cubic sample reads two voxels beyond its cell and may
+    // overshoot the values it reads: the bricks' ranges do not bound it.
+    const bool skipping =
+        scene.skipEmptySpace && !renderer.objectOrder() && !scene.fusion && !isCubic(scene.interpolation);
     ShaderConstants constants = {{"u_interpolation", int(scene.interpolation)},
                                  {"u_has_tf", inputs.tf ? 1 : 0},
                                  {"u_layer", pass.layer ? 1 : 0},
@@ -380,6 +400,9 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     if (const auto estimator = renderer.precomputedGradients(pass.values)) uploadGradients(*estimator);
     glActiveTexture(GL_TEXTURE0 + kGradientUnit);
     glBindTexture(GL_TEXTURE_3D, gradientTexture_);
+    if (scene.interpolation == Interpolation::BSpline) uploadBsplineCoefficients();
+    glActiveTexture(GL_TEXTURE0 + kBsplineUnit);
+    glBindTexture(GL_TEXTURE_3D, bsplineTexture_);
 
     // Precomputed textures first: they draw into framebuffers of their own.
     constants["u_skipping"] = 0;

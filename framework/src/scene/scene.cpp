@@ -22,14 +22,18 @@ const char* interpolationName(Interpolation i) {
         case Interpolation::Nearest: return "nearest";
         case Interpolation::Trilinear: return "trilinear";
         case Interpolation::Hardware: return "hardware";
+        case Interpolation::BSpline: return "bspline";
+        case Interpolation::CatmullRom: return "catmull-rom";
     }
     return "?";
 }
 
 Interpolation parseInterpolation(const std::string& name) {
-    for (Interpolation i : {Interpolation::Nearest, Interpolation::Trilinear, Interpolation::Hardware})
+    for (Interpolation i : {Interpolation::Nearest, Interpolation::Trilinear, Interpolation::Hardware,
+                            Interpolation::BSpline, Interpolation::CatmullRom})
         if (name == interpolationName(i)) return i;
-    throw Error("unknown interpolation '" + name + "' (expected nearest, trilinear or hardware)");
+    throw Error("unknown interpolation '" + name +
+                "' (expected nearest, trilinear, hardware, bspline or catmull-rom)");
 }
 
 const char* fusionModeName(FusionMode mode) {

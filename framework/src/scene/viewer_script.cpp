@@ -137,7 +137,8 @@ public:
             return;
         }
         if (c == "interpolation")
-            return oneWord("expected nearest, trilinear or hardware", {"nearest", "trilinear", "hardware"});
+            return oneWord("expected nearest, trilinear, hardware, bspline or catmull-rom",
+                           {"nearest", "trilinear", "hardware", "bspline", "catmull-rom"});
         if (c == "drag") {
             const char* msg = "expected DX DY (pixels per frame) and a number of frames > 0";
             exactly(3, msg);

@@ -130,7 +130,7 @@ void techniquePanel(State& s) {
     if (ImGui::SliderFloat("step", &step, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
         s.scene.step = step, s.dirty = true;
     int interp = int(s.scene.interpolation);
-    if (ImGui::Combo("interpolation", &interp, "nearest\0trilinear\0hardware\0"))
+    if (ImGui::Combo("interpolation", &interp, "nearest\0trilinear\0hardware\0cubic B-spline\0Catmull-Rom\0"))
         s.scene.interpolation = Interpolation(interp), s.dirty = true;
     if (ImGui::Checkbox("skip empty space", &s.scene.skipEmptySpace)) s.dirty = true;
     if (ImGui::IsItemHovered())

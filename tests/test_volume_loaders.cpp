@@ -397,6 +397,9 @@ const Dataset kDatasets[] = {
     {"fld/tooth.fld", {103, 94, 161}, VoxelType::UInt8, {1, 1, 1}, 0, 255},
     {"fld/fuel.fld", {64, 64, 64}, VoxelType::UInt8, {1, 1, 1}, 0, 255},
     {"fld/bucky.fld", {32, 32, 32}, VoxelType::UInt8, {1, 1, 1}, 0, 255},
+    {"tooth_labels.nrrd", {103, 94, 161}, VoxelType::UInt8, {1, 1, 1}, 0, 3},
+    {"headsq_hu_labels.nrrd", {64, 64, 93}, VoxelType::UInt8, {3.2, 3.2, 1.5}, 0, 3},
+    {"dicom/headsq_hu", {64, 64, 93}, VoxelType::Int16, {3.2, 3.2, 1.5}, -1024, 2902},
 };
 
 TEST(BundledDatasets, LoadWithDocumentedDimsTypeAndSpacing) {

@@ -21,6 +21,7 @@ int checkCommand(int argc, char** argv);
 int gradeWorkerCommand(int argc, char** argv);
 int stageHostCommand(int argc, char** argv);
 int benchCommand(int argc, char** argv);
+int meshCommand(int argc, char** argv);
 
 // Options that describe a scene, shared by `render` and `view`.
 std::vector<OptionSpec> sceneOptions();

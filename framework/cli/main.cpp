@@ -18,6 +18,7 @@ void usage(std::ostream& out) {
            "  list                   the renderers and their parameters\n"
            "  compare A.png B.png    difference, PSNR and SSIM between two images\n"
            "  bench [SCENE]          time a scene frame after frame (median ms/frame, samples/s)\n"
+           "  mesh DATASET           an isosurface as a triangle mesh (marching cubes), .ply or .obj\n"
            "  check [--stage S]      check your assignments/ against the expected images\n"
            "  grade --submission DIR grade a submission (or --batch DIR, a class) against the reference\n"
            "  help                   this text\n\n"
@@ -44,6 +45,7 @@ int main(int argc, char** argv) {
         if (command == "compare") return compareCommand(argc, argv);
         if (command == "grade") return gradeCommand(argc, argv);
         if (command == "bench") return benchCommand(argc, argv);
+        if (command == "mesh") return meshCommand(argc, argv);
         if (command == "check") return checkCommand(argc, argv);
         if (command == "grade-worker") return gradeWorkerCommand(argc, argv);
         if (command == "stage-host") return stageHostCommand(argc, argv);

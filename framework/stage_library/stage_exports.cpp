@@ -3,14 +3,17 @@
 // this library defines. The declarations are weak, so a function the
 // submission's files do not define has the address null, and the loader
 // keeps the framework's own.
+#include "voxlab/marching_cubes.h"
 #include "voxlab/proxy_geometry.h"
 #include "voxlab/stage_library.h"
 
 namespace voxlab {
 __attribute__((weak)) std::vector<glm::dvec3> planeBoxPolygon(glm::dvec3, double, glm::dvec3, glm::dvec3);
 __attribute__((weak)) int chooseSliceAxis(glm::dvec3);
+__attribute__((weak)) int cubeCase(const double[8], double);
+__attribute__((weak)) glm::dvec3 edgeCrossing(glm::dvec3, glm::dvec3, double, double, double);
 }  // namespace voxlab
 
 extern "C" voxlab::CppStages voxlab_stage_library_functions() {
-    return {&voxlab::planeBoxPolygon, &voxlab::chooseSliceAxis};
+    return {&voxlab::planeBoxPolygon, &voxlab::chooseSliceAxis, &voxlab::cubeCase, &voxlab::edgeCrossing};
 }

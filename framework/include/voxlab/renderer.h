@@ -75,6 +75,10 @@ public:
     virtual void drawTriangles(const std::vector<glm::vec3>& vertices) = 0;
     // Draws line segments (2 world positions each).
     virtual void drawLines(const std::vector<glm::vec3>& vertices) = 0;
+    // From here on, fragments are kept only where nearer than what is there
+    // (the fragment shader writes gl_FragDepth): for opaque geometry in any
+    // order (the mesh renderer). The depth buffer starts cleared.
+    virtual void enableDepthTest() = 0;
     // Binds the volume as a stack of 2D slices perpendicular to `axis` (a
     // 2D array texture, one layer per voxel layer, bilinear within a layer)
     // to texture unit `unit`.

@@ -3,6 +3,9 @@
 // point is shaders/renderers/ID.frag and its stage code is reference/ID/.
 #pragma once
 
+#include <memory>
+#include <mutex>
+
 #include "voxlab/renderer.h"
 
 namespace voxlab {
@@ -124,6 +127,26 @@ public:
     bool objectOrder() const override { return true; }
     bool needsTransferFunction() const override { return true; }
     void draw(DrawContext& context, const ParameterValues& values) const override;
+};
+
+// The isosurface as a triangle mesh, by marching cubes on the CPU
+// (marching_cubes.h; the marching_cubes stage), drawn with a depth test.
+// The mesh is kept while the volume, the isovalue and the stage's
+// functions stay the same.
+class MeshRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    bool objectOrder() const override { return true; }
+    bool usesTransferFunction() const override { return false; }
+    void draw(DrawContext& context, const ParameterValues& values) const override;
+
+private:
+    struct Cached;
+    std::shared_ptr<const Cached> meshFor(const Volume& volume, double isovalue) const;
+    mutable std::shared_ptr<const Cached> cached_;
+    mutable std::mutex mutex_;
 };
 
 // Parameters several renderers declare alike (shared_parameters.cpp).

@@ -11,11 +11,16 @@
 // the framework renders: it can only answer the calls it is asked.
 //
 // Protocol (native byte order; both ends are this executable):
-//   request   one byte, the function ('P' planeBoxPolygon, 'A' chooseSliceAxis),
-//             then its arguments as doubles (10 for 'P', 3 for 'A');
+//   request   one byte, the function ('P' planeBoxPolygon, 'A' chooseSliceAxis,
+//             'C' cubeCase, 'X' edgeCrossing), then its arguments as doubles
+//             (10 for 'P', 3 for 'A', 9 for 'C': the 8 values and the
+//             isovalue, 9 for 'X': a, b, va, vb, isovalue);
 //   response  'O' then the result ('P': uint32 count <= 64, then 3 doubles a
-//             point; 'A': int32), or 'N'/'E' then uint32 length and the
-//             message of a NotImplemented / other exception.
+//             point; 'A' and 'C': int32; 'X': 3 doubles), or 'N'/'E' then
+//             uint32 length and the message of a NotImplemented / other
+//             exception.
+// One call is one round trip (microseconds): marching cubes calls cubeCase
+// once per cube, so its grading scenes stay small (at most about 10^5 cubes).
 #pragma once
 
 #include <string>

@@ -17,9 +17,14 @@
 
 namespace voxlab {
 
+// One pointer per C++ stage function (their contracts: proxy_geometry.h,
+// marching_cubes.h). Adding one: a member here, a line in
+// forEachStageFunction (stage_library.cpp) and in stage_exports.cpp.
 struct CppStages {
     std::vector<glm::dvec3> (*planeBoxPolygon)(glm::dvec3 normal, double offset, glm::dvec3 lo, glm::dvec3 hi);
     int (*chooseSliceAxis)(glm::dvec3 viewDirection);
+    int (*cubeCase)(const double values[8], double isovalue);
+    glm::dvec3 (*edgeCrossing)(glm::dvec3 a, glm::dvec3 b, double va, double vb, double isovalue);
 };
 
 // The table in use: the linked-in stages unless a library was loaded.

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 
@@ -39,9 +40,11 @@ void sendMessage(char status, const std::string& text) {
         _exit(3);
 }
 
+int argumentCount(char op) { return op == 'P' ? 10 : op == 'A' ? 3 : 9; }
+
 void serveCall(char op, const CppStages& stages) {
     double a[10];
-    if (!readAll(0, a, (op == 'P' ? 10 : 3) * sizeof(double))) _exit(0);
+    if (!readAll(0, a, std::size_t(argumentCount(op)) * sizeof(double))) _exit(0);
     try {
         if (op == 'P') {
             if (!stages.planeBoxPolygon) throw NotImplemented("planeBoxPolygon");
@@ -52,10 +55,18 @@ void serveCall(char op, const CppStages& stages) {
             if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, &count, 4) ||
                 !sendAll(kAnswers, points.data(), count * sizeof(glm::dvec3)))
                 _exit(3);
-        } else {
+        } else if (op == 'A') {
             if (!stages.chooseSliceAxis) throw NotImplemented("chooseSliceAxis");
             const std::int32_t axis = stages.chooseSliceAxis({a[0], a[1], a[2]});
             if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, &axis, 4)) _exit(3);
+        } else if (op == 'C') {
+            if (!stages.cubeCase) throw NotImplemented("cubeCase");
+            const std::int32_t bits = stages.cubeCase(a, a[8]);
+            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, &bits, 4)) _exit(3);
+        } else {
+            if (!stages.edgeCrossing) throw NotImplemented("edgeCrossing");
+            const glm::dvec3 p = stages.edgeCrossing({a[0], a[1], a[2]}, {a[3], a[4], a[5]}, a[6], a[7], a[8]);
+            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, &p, sizeof p)) _exit(3);
         }
     } catch (const NotImplemented& e) {
         sendMessage('N', e.what());
@@ -129,6 +140,24 @@ int remoteChooseSliceAxis(glm::dvec3 v) {
     return axis;
 }
 
+int remoteCubeCase(const double values[8], double isovalue) {
+    double args[9];
+    std::copy(values, values + 8, args);
+    args[8] = isovalue;
+    call('C', args, 9);
+    std::int32_t bits = 0;
+    if (!readAll(host().from, &bits, 4)) hostFailed();
+    return bits;
+}
+
+glm::dvec3 remoteEdgeCrossing(glm::dvec3 a, glm::dvec3 b, double va, double vb, double isovalue) {
+    const double args[9] = {a.x, a.y, a.z, b.x, b.y, b.z, va, vb, isovalue};
+    call('X', args, 9);
+    glm::dvec3 p;
+    if (!readAll(host().from, &p, sizeof p)) hostFailed();
+    return p;
+}
+
 }  // namespace
 
 int runStageHost(const std::string& library) {
@@ -147,7 +176,7 @@ int runStageHost(const std::string& library) {
     const CppStages stages = get();
     signal(SIGPIPE, SIG_DFL);
     for (char op; readAll(0, &op, 1);) {
-        if (op != 'P' && op != 'A') return 2;
+        if (op != 'P' && op != 'A' && op != 'C' && op != 'X') return 2;
         serveCall(op, stages);
     }
     return 0;
@@ -176,6 +205,8 @@ void useStageHost(const std::string& voxlab, const std::string& library, const s
     for (const std::string& f : functions) {
         if (f == "planeBoxPolygon") routed.planeBoxPolygon = &remotePlaneBoxPolygon;
         else if (f == "chooseSliceAxis") routed.chooseSliceAxis = &remoteChooseSliceAxis;
+        else if (f == "cubeCase") routed.cubeCase = &remoteCubeCase;
+        else if (f == "edgeCrossing") routed.edgeCrossing = &remoteEdgeCrossing;
         else throw Error("'" + f + "' is not a C++ stage function");
     }
     overrideStageFunctions(routed);

@@ -28,6 +28,8 @@ TransferFunction2D fallbackTransferFunction2D(glm::dvec2 window) {
     return TransferFunction2D({w});
 }
 
+// A float colour target with a depth buffer (for the object-order
+// renderers that test depth: the mesh).
 void createFloatTarget(unsigned* fbo, unsigned* texture, int width, int height) {
     if (!*fbo) {
         glGenFramebuffers(1, fbo);
@@ -41,9 +43,32 @@ void createFloatTarget(unsigned* fbo, unsigned* texture, int width, int height) 
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *texture, 0);
+    GLint depth = 0;  // the renderbuffer attached last time, resized with the colour
+    glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME,
+                                          &depth);
+    GLuint renderbuffer = GLuint(depth);
+    if (!renderbuffer) glGenRenderbuffers(1, &renderbuffer);
+    glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, renderbuffer);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw Error("OpenGL: the float framebuffer (" + std::to_string(width) + "x" + std::to_string(height) +
                     ") is not complete");
+}
+
+// Deletes a target made by createFloatTarget, its depth buffer included.
+void deleteFloatTarget(unsigned fbo, unsigned texture) {
+    if (fbo) {
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        GLint depth = 0;
+        glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
+                                              GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &depth);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        const GLuint renderbuffer = GLuint(depth);
+        if (renderbuffer) glDeleteRenderbuffers(1, &renderbuffer);
+        glDeleteFramebuffers(1, &fbo);
+    }
+    if (texture) glDeleteTextures(1, &texture);
 }
 
 }  // namespace
@@ -88,12 +113,8 @@ RenderEngine::~RenderEngine() {
     glDeleteTextures(1, &gradientTexture_);
     glDeleteTextures(1, &bsplineTexture_);
     for (TransferFunctionSlot& slot : tf_) glDeleteTextures(1, &slot.texture);
-    if (fbo_) glDeleteFramebuffers(1, &fbo_);
-    if (colorTexture_) glDeleteTextures(1, &colorTexture_);
-    for (int i = 0; i < 2; ++i) {
-        if (layerFbo_[i]) glDeleteFramebuffers(1, &layerFbo_[i]);
-        if (layerTexture_[i]) glDeleteTextures(1, &layerTexture_[i]);
-    }
+    deleteFloatTarget(fbo_, colorTexture_);
+    for (int i = 0; i < 2; ++i) deleteFloatTarget(layerFbo_[i], layerTexture_[i]);
     for (unsigned& t : sliceStacks_)
         if (t) glDeleteTextures(1, &t);
     if (geometryVao_) glDeleteVertexArrays(1, &geometryVao_);
@@ -291,6 +312,13 @@ public:
     const ShaderProgram& program() const override { return program_; }
     void drawTriangles(const std::vector<glm::vec3>& vertices) override { drawArrays(GL_TRIANGLES, vertices); }
     void drawLines(const std::vector<glm::vec3>& vertices) override { drawArrays(GL_LINES, vertices); }
+    void enableDepthTest() override {
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        glClearDepth(1.0);
+        glClear(GL_DEPTH_BUFFER_BIT);
+    }
     void bindSliceStack(int axis, int unit) override {
         const unsigned texture = engine_.sliceStack(axis);
         glActiveTexture(GL_TEXTURE0 + unit);
@@ -433,6 +461,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
         EngineDrawContext context(*this, scene, cam, prog);
         renderer.draw(context, pass.values);
         glDisable(GL_BLEND);
+        glDisable(GL_DEPTH_TEST);
     } else {
         glDisable(GL_BLEND);
         glBindVertexArray(vao_);

@@ -4,6 +4,7 @@
 #include <dlfcn.h>
 
 #include "voxlab/error.h"
+#include "voxlab/marching_cubes.h"
 #include "voxlab/proxy_geometry.h"
 
 namespace voxlab {
@@ -11,26 +12,43 @@ namespace voxlab {
 namespace {
 
 CppStages& table() {
-    static CppStages stages{&planeBoxPolygon, &chooseSliceAxis};
+    static CppStages stages{&planeBoxPolygon, &chooseSliceAxis, &cubeCase, &edgeCrossing};
     return stages;
+}
+
+// The one list of the table's functions: each with its name, the same
+// member of a second table, and a stub that says it is not implemented
+// (with the function's own signature).
+template <class Visit>
+void forEachStageFunction(CppStages& t, const CppStages& other, Visit visit) {
+    visit("planeBoxPolygon", t.planeBoxPolygon, other.planeBoxPolygon,
+          [](glm::dvec3, double, glm::dvec3, glm::dvec3) -> std::vector<glm::dvec3> {
+              throw NotImplemented("planeBoxPolygon");
+          });
+    visit("chooseSliceAxis", t.chooseSliceAxis, other.chooseSliceAxis,
+          [](glm::dvec3) -> int { throw NotImplemented("chooseSliceAxis"); });
+    visit("cubeCase", t.cubeCase, other.cubeCase, [](const double*, double) -> int { throw NotImplemented("cubeCase"); });
+    visit("edgeCrossing", t.edgeCrossing, other.edgeCrossing,
+          [](glm::dvec3, glm::dvec3, double, double, double) -> glm::dvec3 { throw NotImplemented("edgeCrossing"); });
 }
 
 }  // namespace
 
 const CppStages& cppStages() { return table(); }
 
-bool isStageFunction(const std::string& name) { return name == "planeBoxPolygon" || name == "chooseSliceAxis"; }
+bool isStageFunction(const std::string& name) {
+    bool found = false;
+    forEachStageFunction(table(), table(), [&](const char* n, auto&, auto, auto) { found = found || name == n; });
+    return found;
+}
 
 void clearStageFunctions(const std::vector<std::string>& names) {
     for (const std::string& name : names) {
-        if (name == "planeBoxPolygon")
-            table().planeBoxPolygon = [](glm::dvec3, double, glm::dvec3, glm::dvec3) -> std::vector<glm::dvec3> {
-                throw NotImplemented("planeBoxPolygon");
-            };
-        else if (name == "chooseSliceAxis")
-            table().chooseSliceAxis = [](glm::dvec3) -> int { throw NotImplemented("chooseSliceAxis"); };
-        else
-            throw Error("'" + name + "' is not a C++ stage function");
+        bool cleared = false;
+        forEachStageFunction(table(), table(), [&](const char* n, auto& function, auto, auto stub) {
+            if (name == n) function = stub, cleared = true;
+        });
+        if (!cleared) throw Error("'" + name + "' is not a C++ stage function");
     }
 }
 
@@ -49,14 +67,11 @@ std::vector<std::string> loadStageLibrary(const std::string& path) {
 
 std::vector<std::string> overrideStageFunctions(const CppStages& found) {
     std::vector<std::string> names;
-    if (found.planeBoxPolygon) {
-        table().planeBoxPolygon = found.planeBoxPolygon;
-        names.push_back("planeBoxPolygon");
-    }
-    if (found.chooseSliceAxis) {
-        table().chooseSliceAxis = found.chooseSliceAxis;
-        names.push_back("chooseSliceAxis");
-    }
+    forEachStageFunction(table(), found, [&](const char* n, auto& function, auto offered, auto) {
+        if (!offered) return;
+        function = offered;
+        names.push_back(n);
+    });
     return names;
 }
 

@@ -28,6 +28,7 @@ const RendererRegistry& rendererRegistry() {
                                                             "behind where the ray enters; 0 turns it off"}});
         r.add<CompositeRenderer>();
         r.add<IsoRenderer>();
+        r.add<MeshRenderer>();
         r.add<Tf2dRenderer>();
         r.add<Texslice2dRenderer>();
         r.add<Texslice3dRenderer>();

@@ -43,8 +43,10 @@ TEST(Assignments, EveryRayCasterShowsTheNotImplementedPattern) {
             EXPECT_NE(std::string(e.what()).find("is not yet implemented"), std::string::npos);
             continue;
         }
-        // Half the squares are magenta wherever the volume is drawn.
-        EXPECT_GT(magentaFraction(img), 0.2) << r->id() << " does not show the pattern";
+        // Half the squares are magenta wherever the volume is drawn: the
+        // whole box for a ray caster (0.5 of this image), only the
+        // sphere's disc for a surface mesh (0.38 of it).
+        EXPECT_GT(magentaFraction(img), 0.15) << r->id() << " does not show the pattern";
     }
 }
 

@@ -25,6 +25,7 @@ namespace voxlab {
 
 class ShaderProgram;
 struct Camera;
+class TransferFunction;
 class Volume;
 
 enum class ParameterType { Float, Int, Bool };
@@ -79,6 +80,13 @@ public:
     // (the fragment shader writes gl_FragDepth): for opaque geometry in any
     // order (the mesh renderer). The depth buffer starts cleared.
     virtual void enableDepthTest() = 0;
+    // Draws one square (two triangles, six vertices: gl_VertexID 0..5) per
+    // instance, each instance a vec4 at attribute 0 (a splat's world position
+    // and value); the vertex shader places the corners.
+    virtual void drawInstancedSquares(const std::vector<glm::vec4>& instances) = 0;
+    // The transfer function the pass classifies with: the scene's, or the
+    // engine's fallback (render_engine.h).
+    virtual const TransferFunction& transferFunction() const = 0;
     // Binds the volume as a stack of 2D slices perpendicular to `axis` (a
     // 2D array texture, one layer per voxel layer, bilinear within a layer)
     // to texture unit `unit`.

@@ -149,6 +149,27 @@ private:
     mutable std::mutex mutex_;
 };
 
+// Splatting (splatting.h): every voxel the transfer function shows, drawn as
+// a Gaussian footprint (a point sprite), back to front in the splat stage's
+// order. The points are kept while the volume, the transfer function and
+// the walk stay the same.
+class SplatRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    bool objectOrder() const override { return true; }
+    bool needsTransferFunction() const override { return true; }
+    std::string vertexShader() const override { return "renderers/splat.vert"; }
+    void draw(DrawContext& context, const ParameterValues& values) const override;
+
+private:
+    struct Cached;
+    std::shared_ptr<const Cached> pointsFor(const Volume& volume, const TransferFunction& tf, glm::dvec3 view) const;
+    mutable std::shared_ptr<const Cached> cached_;
+    mutable std::mutex mutex_;
+};
+
 // Parameters several renderers declare alike (shared_parameters.cpp).
 // Shading: shading, blinn, ka, kd, ks, shininess, light_azimuth,
 // light_elevation, min_gradient, and the gradient's sobel and

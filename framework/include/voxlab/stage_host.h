@@ -12,11 +12,12 @@
 //
 // Protocol (native byte order; both ends are this executable):
 //   request   one byte, the function ('P' planeBoxPolygon, 'A' chooseSliceAxis,
-//             'C' cubeCase, 'X' edgeCrossing), then its arguments as doubles
-//             (10 for 'P', 3 for 'A', 9 for 'C': the 8 values and the
-//             isovalue, 9 for 'X': a, b, va, vb, isovalue);
+//             'C' cubeCase, 'X' edgeCrossing, 'S' splatOrder), then its
+//             arguments as doubles (10 for 'P', 3 for 'A' and 'S', 9 for 'C':
+//             the 8 values and the isovalue, 9 for 'X': a, b, va, vb, isovalue);
 //   response  'O' then the result ('P': uint32 count <= 64, then 3 doubles a
-//             point; 'A' and 'C': int32; 'X': 3 doubles), or 'N'/'E' then
+//             point; 'A' and 'C': int32; 'X': 3 doubles; 'S': 6 int32, the
+//             axes then the steps), or 'N'/'E' then
 //             uint32 length and the message of a NotImplemented / other
 //             exception.
 // One call is one round trip (microseconds): marching cubes calls cubeCase

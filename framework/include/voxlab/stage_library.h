@@ -15,6 +15,8 @@
 
 #include <glm/glm.hpp>
 
+#include "voxlab/splatting.h"
+
 namespace voxlab {
 
 // One pointer per C++ stage function (their contracts: proxy_geometry.h,
@@ -25,6 +27,7 @@ struct CppStages {
     int (*chooseSliceAxis)(glm::dvec3 viewDirection);
     int (*cubeCase)(const double values[8], double isovalue);
     glm::dvec3 (*edgeCrossing)(glm::dvec3 a, glm::dvec3 b, double va, double vb, double isovalue);
+    SplatOrder (*splatOrder)(glm::dvec3 viewDirection);
 };
 
 // The table in use: the linked-in stages unless a library was loaded.

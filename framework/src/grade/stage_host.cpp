@@ -40,7 +40,7 @@ void sendMessage(char status, const std::string& text) {
         _exit(3);
 }
 
-int argumentCount(char op) { return op == 'P' ? 10 : op == 'A' ? 3 : 9; }
+int argumentCount(char op) { return op == 'P' ? 10 : op == 'A' || op == 'S' ? 3 : 9; }
 
 void serveCall(char op, const CppStages& stages) {
     double a[10];
@@ -63,6 +63,12 @@ void serveCall(char op, const CppStages& stages) {
             if (!stages.cubeCase) throw NotImplemented("cubeCase");
             const std::int32_t bits = stages.cubeCase(a, a[8]);
             if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, &bits, 4)) _exit(3);
+        } else if (op == 'S') {
+            if (!stages.splatOrder) throw NotImplemented("splatOrder");
+            const SplatOrder order = stages.splatOrder({a[0], a[1], a[2]});
+            std::int32_t out[6];
+            for (int k = 0; k < 3; ++k) out[k] = order.axes[std::size_t(k)], out[3 + k] = order.step[std::size_t(k)];
+            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, out, sizeof out)) _exit(3);
         } else {
             if (!stages.edgeCrossing) throw NotImplemented("edgeCrossing");
             const glm::dvec3 p = stages.edgeCrossing({a[0], a[1], a[2]}, {a[3], a[4], a[5]}, a[6], a[7], a[8]);
@@ -150,6 +156,16 @@ int remoteCubeCase(const double values[8], double isovalue) {
     return bits;
 }
 
+SplatOrder remoteSplatOrder(glm::dvec3 d) {
+    const double args[3] = {d.x, d.y, d.z};
+    call('S', args, 3);
+    std::int32_t out[6];
+    if (!readAll(host().from, out, sizeof out)) hostFailed();
+    SplatOrder order;
+    for (int k = 0; k < 3; ++k) order.axes[std::size_t(k)] = out[k], order.step[std::size_t(k)] = out[3 + k];
+    return order;
+}
+
 glm::dvec3 remoteEdgeCrossing(glm::dvec3 a, glm::dvec3 b, double va, double vb, double isovalue) {
     const double args[9] = {a.x, a.y, a.z, b.x, b.y, b.z, va, vb, isovalue};
     call('X', args, 9);
@@ -176,7 +192,7 @@ int runStageHost(const std::string& library) {
     const CppStages stages = get();
     signal(SIGPIPE, SIG_DFL);
     for (char op; readAll(0, &op, 1);) {
-        if (op != 'P' && op != 'A' && op != 'C' && op != 'X') return 2;
+        if (op != 'P' && op != 'A' && op != 'C' && op != 'X' && op != 'S') return 2;
         serveCall(op, stages);
     }
     return 0;
@@ -207,6 +223,7 @@ void useStageHost(const std::string& voxlab, const std::string& library, const s
         else if (f == "chooseSliceAxis") routed.chooseSliceAxis = &remoteChooseSliceAxis;
         else if (f == "cubeCase") routed.cubeCase = &remoteCubeCase;
         else if (f == "edgeCrossing") routed.edgeCrossing = &remoteEdgeCrossing;
+        else if (f == "splatOrder") routed.splatOrder = &remoteSplatOrder;
         else throw Error("'" + f + "' is not a C++ stage function");
     }
     overrideStageFunctions(routed);

@@ -119,6 +119,8 @@ RenderEngine::~RenderEngine() {
         if (t) glDeleteTextures(1, &t);
     if (geometryVao_) glDeleteVertexArrays(1, &geometryVao_);
     if (geometryVbo_) glDeleteBuffers(1, &geometryVbo_);
+    if (pointVao_) glDeleteVertexArrays(1, &pointVao_);
+    if (pointVbo_) glDeleteBuffers(1, &pointVbo_);
     if (brickTexture_) glDeleteTextures(1, &brickTexture_);
     for (auto& [index, made] : precomputed_) glDeleteTextures(1, &made.texture);
     if (precomputeFbo_) glDeleteFramebuffers(1, &precomputeFbo_);
@@ -295,8 +297,9 @@ void RenderEngine::setSceneUniforms(const ShaderProgram& prog, const Scene& scen
 // positions (attribute 0) and the slice stacks.
 class EngineDrawContext final : public DrawContext {
 public:
-    EngineDrawContext(RenderEngine& engine, const Scene& scene, const Camera& camera, const ShaderProgram& program)
-        : engine_(engine), scene_(scene), camera_(camera), program_(program) {
+    EngineDrawContext(RenderEngine& engine, const Scene& scene, const Camera& camera, const ShaderProgram& program,
+                      const TransferFunction* tf)
+        : engine_(engine), scene_(scene), camera_(camera), program_(program), tf_(tf) {
         if (!engine_.geometryVao_) {
             glGenVertexArrays(1, &engine_.geometryVao_);
             glGenBuffers(1, &engine_.geometryVbo_);
@@ -312,6 +315,27 @@ public:
     const ShaderProgram& program() const override { return program_; }
     void drawTriangles(const std::vector<glm::vec3>& vertices) override { drawArrays(GL_TRIANGLES, vertices); }
     void drawLines(const std::vector<glm::vec3>& vertices) override { drawArrays(GL_LINES, vertices); }
+    void drawInstancedSquares(const std::vector<glm::vec4>& instances) override {
+        if (instances.empty()) return;
+        if (!engine_.pointVao_) {  // its own layout: 4 floats per instance
+            glGenVertexArrays(1, &engine_.pointVao_);
+            glGenBuffers(1, &engine_.pointVbo_);
+            glBindVertexArray(engine_.pointVao_);
+            glBindBuffer(GL_ARRAY_BUFFER, engine_.pointVbo_);
+            glEnableVertexAttribArray(0);
+            glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(glm::vec4), nullptr);
+            glVertexAttribDivisor(0, 1);
+        }
+        glBindVertexArray(engine_.pointVao_);
+        glBindBuffer(GL_ARRAY_BUFFER, engine_.pointVbo_);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(instances.size() * sizeof(glm::vec4)), instances.data(),
+                     GL_STREAM_DRAW);
+        glDrawArraysInstanced(GL_TRIANGLES, 0, 6, GLsizei(instances.size()));
+    }
+    const TransferFunction& transferFunction() const override {
+        if (!tf_) throw Error("renderer '" + scene_.renderer + "' asked for a transfer function it did not declare");
+        return *tf_;
+    }
     void enableDepthTest() override {
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
@@ -338,6 +362,7 @@ private:
     const Scene& scene_;
     const Camera& camera_;
     const ShaderProgram& program_;
+    const TransferFunction* tf_;
 };
 
 // The uniforms and textures of one pass that every program of the pass
@@ -458,7 +483,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
         glClear(GL_COLOR_BUFFER_BIT);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-        EngineDrawContext context(*this, scene, cam, prog);
+        EngineDrawContext context(*this, scene, cam, prog, inputs.tf);
         renderer.draw(context, pass.values);
         glDisable(GL_BLEND);
         glDisable(GL_DEPTH_TEST);

@@ -12,7 +12,7 @@ namespace voxlab {
 namespace {
 
 CppStages& table() {
-    static CppStages stages{&planeBoxPolygon, &chooseSliceAxis, &cubeCase, &edgeCrossing};
+    static CppStages stages{&planeBoxPolygon, &chooseSliceAxis, &cubeCase, &edgeCrossing, &splatOrder};
     return stages;
 }
 
@@ -30,6 +30,7 @@ void forEachStageFunction(CppStages& t, const CppStages& other, Visit visit) {
     visit("cubeCase", t.cubeCase, other.cubeCase, [](const double*, double) -> int { throw NotImplemented("cubeCase"); });
     visit("edgeCrossing", t.edgeCrossing, other.edgeCrossing,
           [](glm::dvec3, glm::dvec3, double, double, double) -> glm::dvec3 { throw NotImplemented("edgeCrossing"); });
+    visit("splatOrder", t.splatOrder, other.splatOrder, [](glm::dvec3) -> SplatOrder { throw NotImplemented("splatOrder"); });
 }
 
 }  // namespace

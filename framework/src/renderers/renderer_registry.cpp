@@ -32,6 +32,7 @@ const RendererRegistry& rendererRegistry() {
         r.add<Tf2dRenderer>();
         r.add<Texslice2dRenderer>();
         r.add<Texslice3dRenderer>();
+        r.add<SplatRenderer>();
         return r;
     }();
     return registry;

@@ -73,7 +73,7 @@ TEST_F(FunctionChecks, ListsOneCheckPerStageWithADescription) {
         {"gradient_opacity_random", "gradient_opacity"}, {"attenuated_mip_random_rays", "attenuated_mip"},
         {"preintegrate_segment_random", "preintegration"}, {"light_transmittance_random", "shadows"},
         {"cubic_random_points", "cubic"}, {"marching_cubes_random", "marching_cubes"},
-        {"splat_order_random", "splat"}};
+        {"splat_order_random", "splat"}, {"shear_warp_random", "shearwarp"}};
     std::map<std::string, std::string> listed;
     for (const FunctionCheckInfo& info : functionChecks()) {
         listed[info.name] = info.stage;

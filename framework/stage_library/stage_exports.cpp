@@ -5,6 +5,7 @@
 // keeps the framework's own.
 #include "voxlab/marching_cubes.h"
 #include "voxlab/proxy_geometry.h"
+#include "voxlab/shear_warp.h"
 #include "voxlab/splatting.h"
 #include "voxlab/stage_library.h"
 
@@ -14,9 +15,10 @@ __attribute__((weak)) int chooseSliceAxis(glm::dvec3);
 __attribute__((weak)) int cubeCase(const double[8], double);
 __attribute__((weak)) glm::dvec3 edgeCrossing(glm::dvec3, glm::dvec3, double, double, double);
 __attribute__((weak)) SplatOrder splatOrder(glm::dvec3);
+__attribute__((weak)) ShearWarp factorShearWarp(const Camera&, glm::ivec3, glm::dvec3);
 }  // namespace voxlab
 
 extern "C" voxlab::CppStages voxlab_stage_library_functions() {
     return {&voxlab::planeBoxPolygon, &voxlab::chooseSliceAxis, &voxlab::cubeCase, &voxlab::edgeCrossing,
-            &voxlab::splatOrder};
+            &voxlab::splatOrder, &voxlab::factorShearWarp};
 }

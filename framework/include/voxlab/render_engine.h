@@ -166,6 +166,8 @@ private:
     void uploadBsplineCoefficients();  // once per volume, for the "bspline" interpolation
     void ensureTarget(int width, int height);
     void ensureLayers(int width, int height);
+    // The two float targets of multi-pass object-order renderers (shear-warp).
+    void ensureIntermediate(int target, glm::ivec2 size);
     // Empty-space skipping (render_engine_bricks.cpp): builds the brick grid
     // once per volume, marks the bricks `rule` lets rays skip, and binds the
     // result for the shaders.
@@ -179,6 +181,8 @@ private:
     unsigned fbo_ = 0, colorTexture_ = 0;
     int fboWidth_ = 0, fboHeight_ = 0;
     unsigned layerFbo_[2] = {0, 0}, layerTexture_[2] = {0, 0};
+    unsigned intermediateFbo_[2] = {0, 0}, intermediateTexture_[2] = {0, 0};
+    glm::ivec2 intermediateSize_[2] = {glm::ivec2(0), glm::ivec2(0)};
     int layerWidth_ = 0, layerHeight_ = 0;
     float valueScale_ = 1.0f, valueOffset_ = 0.0f;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_;

@@ -87,6 +87,20 @@ public:
     // The transfer function the pass classifies with: the scene's, or the
     // engine's fallback (render_engine.h).
     virtual const TransferFunction& transferFunction() const = 0;
+
+    // Multi-pass drawing (shear-warp's intermediate image): full-screen
+    // passes of other fragment shaders, into one of two float RGBA targets
+    // of any size, read back as textures, then into the pass's own output.
+    // useFullScreenProgram compiles the shader (with voxlab/fullscreen.vert)
+    // as the renderer's own is, sets the pass's uniforms, binds it and makes
+    // it program(). drawToTarget draws into target 0 or 1 (no blending);
+    // drawToOutput goes back to the output, blending "over" again.
+    virtual const ShaderProgram& useFullScreenProgram(const std::string& fragmentShader) = 0;
+    virtual void drawToTarget(int target, glm::ivec2 size) = 0;
+    virtual void clearTarget(glm::vec4 colour) = 0;  // the target drawn to
+    virtual void bindTargetTexture(int target, int unit) = 0;
+    virtual void drawToOutput() = 0;
+    virtual void drawFullScreen() = 0;
     // Binds the volume as a stack of 2D slices perpendicular to `axis` (a
     // 2D array texture, one layer per voxel layer, bilinear within a layer)
     // to texture unit `unit`.

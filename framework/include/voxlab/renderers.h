@@ -170,6 +170,20 @@ private:
     mutable std::mutex mutex_;
 };
 
+// Shear-warp (shear_warp.h), orthographic views: the shearwarp stage's
+// factorisation, one full-screen pass per slice into an intermediate image
+// (two float targets taking turns), one warp pass onto the screen.
+class ShearWarpRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    bool objectOrder() const override { return true; }
+    bool needsTransferFunction() const override { return true; }
+    std::string vertexShader() const override { return "voxlab/fullscreen.vert"; }
+    void checkScene(const Scene& scene, const ParameterValues& values) const override;
+    void draw(DrawContext& context, const ParameterValues& values) const override;
+};
+
 // Parameters several renderers declare alike (shared_parameters.cpp).
 // Shading: shading, blinn, ka, kd, ks, shininess, light_azimuth,
 // light_elevation, min_gradient, and the gradient's sobel and

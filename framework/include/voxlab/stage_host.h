@@ -12,12 +12,16 @@
 //
 // Protocol (native byte order; both ends are this executable):
 //   request   one byte, the function ('P' planeBoxPolygon, 'A' chooseSliceAxis,
-//             'C' cubeCase, 'X' edgeCrossing, 'S' splatOrder), then its
-//             arguments as doubles (10 for 'P', 3 for 'A' and 'S', 9 for 'C':
-//             the 8 values and the isovalue, 9 for 'X': a, b, va, vb, isovalue);
+//             'C' cubeCase, 'X' edgeCrossing, 'S' splatOrder, 'W'
+//             factorShearWarp), then its arguments as doubles (10 for 'P', 3
+//             for 'A' and 'S', 9 for 'C': the 8 values and the isovalue, 9 for
+//             'X': a, b, va, vb, isovalue, 22 for 'W': the camera's position,
+//             forward, right, down, pixel scale, width, height, projection
+//             (0 orthographic), then dims and spacing);
 //   response  'O' then the result ('P': uint32 count <= 64, then 3 doubles a
 //             point; 'A' and 'C': int32; 'X': 3 doubles; 'S': 6 int32, the
-//             axes then the steps), or 'N'/'E' then
+//             axes then the steps; 'W': 17 doubles, axis, front, shear,
+//             offset, size and the warp's 9, column by column), or 'N'/'E' then
 //             uint32 length and the message of a NotImplemented / other
 //             exception.
 // One call is one round trip (microseconds): marching cubes calls cubeCase

@@ -15,6 +15,7 @@
 
 #include <glm/glm.hpp>
 
+#include "voxlab/shear_warp.h"
 #include "voxlab/splatting.h"
 
 namespace voxlab {
@@ -28,6 +29,7 @@ struct CppStages {
     int (*cubeCase)(const double values[8], double isovalue);
     glm::dvec3 (*edgeCrossing)(glm::dvec3 a, glm::dvec3 b, double va, double vb, double isovalue);
     SplatOrder (*splatOrder)(glm::dvec3 viewDirection);
+    ShearWarp (*factorShearWarp)(const Camera& camera, glm::ivec3 dims, glm::dvec3 spacing);
 };
 
 // The table in use: the linked-in stages unless a library was loaded.

@@ -40,10 +40,29 @@ void sendMessage(char status, const std::string& text) {
         _exit(3);
 }
 
-int argumentCount(char op) { return op == 'P' ? 10 : op == 'A' || op == 'S' ? 3 : 9; }
+int argumentCount(char op) { return op == 'P' ? 10 : op == 'A' || op == 'S' ? 3 : op == 'W' ? 22 : 9; }
+
+// A camera and a grid as the 22 doubles of a 'W' call, and back.
+void packShearWarpCall(const Camera& cam, glm::ivec3 dims, glm::dvec3 spacing, double* a) {
+    const glm::dvec3 vectors[4] = {cam.position, cam.forward, cam.right, cam.down};
+    for (int v = 0; v < 4; ++v)
+        for (int k = 0; k < 3; ++k) a[3 * v + k] = vectors[v][k];
+    a[12] = cam.pixelScale, a[13] = cam.width, a[14] = cam.height;
+    a[15] = cam.projection == Projection::Orthographic ? 0.0 : 1.0;
+    for (int k = 0; k < 3; ++k) a[16 + k] = dims[k], a[19 + k] = spacing[k];
+}
+
+Camera unpackCamera(const double* a) {
+    Camera cam;
+    cam.position = {a[0], a[1], a[2]}, cam.forward = {a[3], a[4], a[5]};
+    cam.right = {a[6], a[7], a[8]}, cam.down = {a[9], a[10], a[11]};
+    cam.pixelScale = a[12], cam.width = int(a[13]), cam.height = int(a[14]);
+    cam.projection = a[15] == 0.0 ? Projection::Orthographic : Projection::Perspective;
+    return cam;
+}
 
 void serveCall(char op, const CppStages& stages) {
-    double a[10];
+    double a[22];
     if (!readAll(0, a, std::size_t(argumentCount(op)) * sizeof(double))) _exit(0);
     try {
         if (op == 'P') {
@@ -63,6 +82,15 @@ void serveCall(char op, const CppStages& stages) {
             if (!stages.cubeCase) throw NotImplemented("cubeCase");
             const std::int32_t bits = stages.cubeCase(a, a[8]);
             if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, &bits, 4)) _exit(3);
+        } else if (op == 'W') {
+            if (!stages.factorShearWarp) throw NotImplemented("factorShearWarp");
+            const ShearWarp sw = stages.factorShearWarp(unpackCamera(a), glm::ivec3(int(a[16]), int(a[17]), int(a[18])),
+                                                        {a[19], a[20], a[21]});
+            double out[17] = {double(sw.axis), double(sw.front), sw.shear.x, sw.shear.y, sw.offset.x, sw.offset.y,
+                              double(sw.size.x), double(sw.size.y)};
+            for (int col = 0; col < 3; ++col)
+                for (int row = 0; row < 3; ++row) out[8 + 3 * col + row] = sw.warp[col][row];
+            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, out, sizeof out)) _exit(3);
         } else if (op == 'S') {
             if (!stages.splatOrder) throw NotImplemented("splatOrder");
             const SplatOrder order = stages.splatOrder({a[0], a[1], a[2]});
@@ -156,6 +184,20 @@ int remoteCubeCase(const double values[8], double isovalue) {
     return bits;
 }
 
+ShearWarp remoteFactorShearWarp(const Camera& camera, glm::ivec3 dims, glm::dvec3 spacing) {
+    double args[22];
+    packShearWarpCall(camera, dims, spacing, args);
+    call('W', args, 22);
+    double out[17];
+    if (!readAll(host().from, out, sizeof out)) hostFailed();
+    ShearWarp sw;
+    sw.axis = int(out[0]), sw.front = int(out[1]);
+    sw.shear = {out[2], out[3]}, sw.offset = {out[4], out[5]}, sw.size = {int(out[6]), int(out[7])};
+    for (int col = 0; col < 3; ++col)
+        for (int row = 0; row < 3; ++row) sw.warp[col][row] = out[8 + 3 * col + row];
+    return sw;
+}
+
 SplatOrder remoteSplatOrder(glm::dvec3 d) {
     const double args[3] = {d.x, d.y, d.z};
     call('S', args, 3);
@@ -192,7 +234,7 @@ int runStageHost(const std::string& library) {
     const CppStages stages = get();
     signal(SIGPIPE, SIG_DFL);
     for (char op; readAll(0, &op, 1);) {
-        if (op != 'P' && op != 'A' && op != 'C' && op != 'X' && op != 'S') return 2;
+        if (op != 'P' && op != 'A' && op != 'C' && op != 'X' && op != 'S' && op != 'W') return 2;
         serveCall(op, stages);
     }
     return 0;
@@ -224,6 +266,7 @@ void useStageHost(const std::string& voxlab, const std::string& library, const s
         else if (f == "cubeCase") routed.cubeCase = &remoteCubeCase;
         else if (f == "edgeCrossing") routed.edgeCrossing = &remoteEdgeCrossing;
         else if (f == "splatOrder") routed.splatOrder = &remoteSplatOrder;
+        else if (f == "factorShearWarp") routed.factorShearWarp = &remoteFactorShearWarp;
         else throw Error("'" + f + "' is not a C++ stage function");
     }
     overrideStageFunctions(routed);

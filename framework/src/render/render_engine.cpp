@@ -7,6 +7,7 @@
 #include "voxlab/bspline.h"
 #include "voxlab/error.h"
 #include "voxlab/scene_volumes.h"
+#include "engine_draw_context.h"
 #include "voxlab_gl.h"
 
 namespace voxlab {
@@ -115,6 +116,7 @@ RenderEngine::~RenderEngine() {
     for (TransferFunctionSlot& slot : tf_) glDeleteTextures(1, &slot.texture);
     deleteFloatTarget(fbo_, colorTexture_);
     for (int i = 0; i < 2; ++i) deleteFloatTarget(layerFbo_[i], layerTexture_[i]);
+    for (int i = 0; i < 2; ++i) deleteFloatTarget(intermediateFbo_[i], intermediateTexture_[i]);
     for (unsigned& t : sliceStacks_)
         if (t) glDeleteTextures(1, &t);
     if (geometryVao_) glDeleteVertexArrays(1, &geometryVao_);
@@ -238,6 +240,18 @@ void RenderEngine::ensureTarget(int width, int height) {
     fboWidth_ = width, fboHeight_ = height;
 }
 
+void RenderEngine::ensureIntermediate(int target, glm::ivec2 size) {
+    if (intermediateFbo_[target] && intermediateSize_[target] == size) return;
+    createFloatTarget(&intermediateFbo_[target], &intermediateTexture_[target], size.x, size.y);
+    // Read back with bilinear filtering (the warp), clamped to transparent edges by the reader.
+    glBindTexture(GL_TEXTURE_2D, intermediateTexture_[target]);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    intermediateSize_[target] = size;
+}
+
 void RenderEngine::ensureLayers(int width, int height) {
     if (layerFbo_[0] && width == layerWidth_ && height == layerHeight_) return;
     for (int i = 0; i < 2; ++i) createFloatTarget(&layerFbo_[i], &layerTexture_[i], width, height);
@@ -292,78 +306,6 @@ void RenderEngine::setSceneUniforms(const ShaderProgram& prog, const Scene& scen
         prog.set(("u_clip_plane_normals" + index).c_str(), glm::vec3(glm::normalize(scene.clipPlanes[i].normal)));
     }
 }
-
-// The engine's side of DrawContext: one dynamic vertex buffer of world
-// positions (attribute 0) and the slice stacks.
-class EngineDrawContext final : public DrawContext {
-public:
-    EngineDrawContext(RenderEngine& engine, const Scene& scene, const Camera& camera, const ShaderProgram& program,
-                      const TransferFunction* tf)
-        : engine_(engine), scene_(scene), camera_(camera), program_(program), tf_(tf) {
-        if (!engine_.geometryVao_) {
-            glGenVertexArrays(1, &engine_.geometryVao_);
-            glGenBuffers(1, &engine_.geometryVbo_);
-            glBindVertexArray(engine_.geometryVao_);
-            glBindBuffer(GL_ARRAY_BUFFER, engine_.geometryVbo_);
-            glEnableVertexAttribArray(0);
-            glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
-        }
-    }
-    const Scene& scene() const override { return scene_; }
-    const Volume& volume() const override { return *engine_.volume_; }
-    const Camera& camera() const override { return camera_; }
-    const ShaderProgram& program() const override { return program_; }
-    void drawTriangles(const std::vector<glm::vec3>& vertices) override { drawArrays(GL_TRIANGLES, vertices); }
-    void drawLines(const std::vector<glm::vec3>& vertices) override { drawArrays(GL_LINES, vertices); }
-    void drawInstancedSquares(const std::vector<glm::vec4>& instances) override {
-        if (instances.empty()) return;
-        if (!engine_.pointVao_) {  // its own layout: 4 floats per instance
-            glGenVertexArrays(1, &engine_.pointVao_);
-            glGenBuffers(1, &engine_.pointVbo_);
-            glBindVertexArray(engine_.pointVao_);
-            glBindBuffer(GL_ARRAY_BUFFER, engine_.pointVbo_);
-            glEnableVertexAttribArray(0);
-            glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(glm::vec4), nullptr);
-            glVertexAttribDivisor(0, 1);
-        }
-        glBindVertexArray(engine_.pointVao_);
-        glBindBuffer(GL_ARRAY_BUFFER, engine_.pointVbo_);
-        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(instances.size() * sizeof(glm::vec4)), instances.data(),
-                     GL_STREAM_DRAW);
-        glDrawArraysInstanced(GL_TRIANGLES, 0, 6, GLsizei(instances.size()));
-    }
-    const TransferFunction& transferFunction() const override {
-        if (!tf_) throw Error("renderer '" + scene_.renderer + "' asked for a transfer function it did not declare");
-        return *tf_;
-    }
-    void enableDepthTest() override {
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        glDepthMask(GL_TRUE);
-        glClearDepth(1.0);
-        glClear(GL_DEPTH_BUFFER_BIT);
-    }
-    void bindSliceStack(int axis, int unit) override {
-        const unsigned texture = engine_.sliceStack(axis);
-        glActiveTexture(GL_TEXTURE0 + unit);
-        glBindTexture(GL_TEXTURE_2D_ARRAY, texture);
-    }
-
-private:
-    void drawArrays(GLenum mode, const std::vector<glm::vec3>& vertices) {
-        if (vertices.empty()) return;
-        glBindVertexArray(engine_.geometryVao_);
-        glBindBuffer(GL_ARRAY_BUFFER, engine_.geometryVbo_);
-        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(glm::vec3)), vertices.data(),
-                     GL_STREAM_DRAW);
-        glDrawArrays(mode, 0, GLsizei(vertices.size()));
-    }
-    RenderEngine& engine_;
-    const Scene& scene_;
-    const Camera& camera_;
-    const ShaderProgram& program_;
-    const TransferFunction* tf_;
-};
 
 // The uniforms and textures of one pass that every program of the pass
 // reads, its precomputations' included: the scene, the clip plane, the
@@ -483,7 +425,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
         glClear(GL_COLOR_BUFFER_BIT);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-        EngineDrawContext context(*this, scene, cam, prog, inputs.tf);
+        EngineDrawContext context(*this, scene, cam, prog, pass, inputs, constants);
         renderer.draw(context, pass.values);
         glDisable(GL_BLEND);
         glDisable(GL_DEPTH_TEST);

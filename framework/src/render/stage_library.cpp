@@ -12,7 +12,7 @@ namespace voxlab {
 namespace {
 
 CppStages& table() {
-    static CppStages stages{&planeBoxPolygon, &chooseSliceAxis, &cubeCase, &edgeCrossing, &splatOrder};
+    static CppStages stages{&planeBoxPolygon, &chooseSliceAxis, &cubeCase, &edgeCrossing, &splatOrder, &factorShearWarp};
     return stages;
 }
 
@@ -31,6 +31,8 @@ void forEachStageFunction(CppStages& t, const CppStages& other, Visit visit) {
     visit("edgeCrossing", t.edgeCrossing, other.edgeCrossing,
           [](glm::dvec3, glm::dvec3, double, double, double) -> glm::dvec3 { throw NotImplemented("edgeCrossing"); });
     visit("splatOrder", t.splatOrder, other.splatOrder, [](glm::dvec3) -> SplatOrder { throw NotImplemented("splatOrder"); });
+    visit("factorShearWarp", t.factorShearWarp, other.factorShearWarp,
+          [](const Camera&, glm::ivec3, glm::dvec3) -> ShearWarp { throw NotImplemented("factorShearWarp"); });
 }
 
 }  // namespace

@@ -33,6 +33,7 @@ const RendererRegistry& rendererRegistry() {
         r.add<Texslice2dRenderer>();
         r.add<Texslice3dRenderer>();
         r.add<SplatRenderer>();
+        r.add<ShearWarpRenderer>();
         return r;
     }();
     return registry;

@@ -13,10 +13,11 @@ namespace voxlab::cli {
 int compareCommand(int argc, char** argv) {
     const std::vector<OptionSpec> specs = {
         {"threshold", "T", "grey levels (of 255) above which a pixel counts as different (default 2)"},
+        {"diff", "FILE.png", "also write the difference |A - B| per channel, times 4 (black: equal)"},
         {"help", "", "show this help"}};
     const Args args(specs, argc, argv, 2, "compare");
     if (args.has("help") || args.positionals().size() != 2) {
-        std::cout << "usage: voxlab compare A.png B.png [--threshold T]\n\n"
+        std::cout << "usage: voxlab compare A.png B.png [--threshold T] [--diff FILE.png]\n\n"
                      "Compares two images of the same size (for example your render and a golden image in\n"
                      "tests/golden/images/) and prints the largest and mean per-pixel difference, the share\n"
                      "of pixels above the threshold, PSNR and SSIM (mean and worst window).\n\n"
@@ -35,6 +36,13 @@ int compareCommand(int argc, char** argv) {
     if (std::isinf(p)) std::printf("PSNR:             inf (identical)\n");
     else std::printf("PSNR:             %.2f dB\n", p);
     std::printf("SSIM:             %.5f (worst window %.5f)\n", s.mean, s.min);
+    if (auto out = args.get("diff")) {
+        Image diff(a.width, a.height);
+        for (std::size_t i = 0; i < diff.rgba.size(); ++i)
+            diff.rgba[i] = i % 4 == 3 ? 1.0f : std::min(1.0f, 4.0f * std::abs(a.rgba[i] - b.rgba[i]));
+        savePng(diff, *out);
+        std::printf("difference (x4): %s\n", out->c_str());
+    }
     return 0;
 }
 

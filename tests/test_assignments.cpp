@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "support/gl_fixture.h"
+#include "voxlab/error.h"
 
 namespace voxlab::testing {
 namespace {
@@ -75,6 +76,11 @@ TEST(Assignments, TheReferenceNeverShowsThePattern) {
         Scene scene;
         scene.renderer = r->id();
         scene.width = scene.height = 32;
+        try {
+            r->checkScene(scene, {});
+        } catch (const Error&) {  // shear-warp: orthographic views only
+            scene.camera.projection = Projection::Orthographic;
+        }
         EXPECT_EQ(magentaFraction(engine.render(scene)), 0.0) << r->id();
     }
 }

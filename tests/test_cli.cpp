@@ -2,12 +2,15 @@
 // error paths (one line on stderr, non-zero exit).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
 
 #include "support/run_command.h"
+#include "voxlab/error.h"
 #include "voxlab/image.h"
 #include "voxlab/renderer.h"
 #include "voxlab/volume.h"
@@ -111,6 +114,22 @@ TEST_F(Cli, RenderAcceptsEveryRendererAndBothProjections) {
             const CommandResult r = runVoxlab("render --dataset phantom:marschner-lobb:24 --renderer " + renderer +
                                               " --projection " + proj + " --azimuth 30 --elevation 10 "
                                               "--size 48x32 --out " + out);
+            // A renderer that cannot draw this projection says so, in the words it gives itself.
+            Scene asked;
+            asked.renderer = renderer;
+            asked.camera.projection = parseProjection(proj);
+            std::string refusal;
+            try {
+                registered->checkScene(asked, {});
+            } catch (const Error& e) {
+                refusal = e.what();
+            }
+            if (!refusal.empty()) {
+                EXPECT_NE(r.exitCode, 0) << renderer << " " << proj;
+                EXPECT_NE(r.err.find(refusal), std::string::npos) << r.err;
+                EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+                continue;
+            }
             ASSERT_EQ(r.exitCode, 0) << r.err;
             const Image img = loadPng(out);
             EXPECT_EQ(img.width, 48);

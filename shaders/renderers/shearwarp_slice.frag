@@ -36,5 +36,6 @@ void main() {
         float alpha = opacity_correction(c.a, u_slice_units);
         sample = vec4(c.rgb * alpha, alpha);
     }
-    frag_color = voxlab_not_implemented ? not_implemented_pattern() : shearwarp_composite(accumulated, sample);
+    vec4 composited = shearwarp_composite(accumulated, sample);  // before the flag is read: a stub sets it
+    frag_color = voxlab_not_implemented ? not_implemented_pattern() : composited;
 }

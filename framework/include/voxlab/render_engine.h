@@ -166,6 +166,8 @@ private:
     void uploadBsplineCoefficients();  // once per volume, for the "bspline" interpolation
     void ensureTarget(int width, int height);
     void ensureLayers(int width, int height);
+    // Adds a program's files to lastRenderSources_ (every program a render used).
+    void noteSources(const ShaderProgram& prog);
     // The two float targets of multi-pass object-order renderers (shear-warp).
     void ensureIntermediate(int target, glm::ivec2 size);
     // Empty-space skipping (render_engine_bricks.cpp): builds the brick grid

@@ -75,6 +75,7 @@ void EngineDrawContext::bindSliceStack(int axis, int unit) {
 
 const ShaderProgram& EngineDrawContext::useFullScreenProgram(const std::string& fragmentShader) {
     const ShaderProgram& prog = engine_.program("voxlab/fullscreen.vert", fragmentShader, constants_);
+    engine_.noteSources(prog);  // its stubs are named too
     prog.use();
     engine_.setPassUniforms(prog, scene_, pass_, inputs_);
     program_ = &prog;

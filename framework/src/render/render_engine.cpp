@@ -234,6 +234,14 @@ std::vector<std::string> RenderEngine::shaderSources() const {
     return files;
 }
 
+void RenderEngine::noteSources(const ShaderProgram& prog) {
+    for (const std::string& shown : prog.sourceFiles()) {
+        const std::string f = filePath(shown);
+        if (std::find(lastRenderSources_.begin(), lastRenderSources_.end(), f) == lastRenderSources_.end())
+            lastRenderSources_.push_back(f);
+    }
+}
+
 void RenderEngine::ensureTarget(int width, int height) {
     if (fbo_ && width == fboWidth_ && height == fboHeight_) return;
     createFloatTarget(&fbo_, &colorTexture_, width, height);
@@ -381,7 +389,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     sceneVolumes_->addConstants(scene, &constants);
     const ShaderProgram& prog = program(renderer.vertexShader(), renderer.fragmentShader(), constants);
     lastRenderSources_.clear();
-    for (const std::string& shown : prog.sourceFiles()) lastRenderSources_.push_back(filePath(shown));
+    noteSources(prog);
 
     glActiveTexture(GL_TEXTURE0 + kVolumeUnit);
     glBindTexture(GL_TEXTURE_3D, volumeTexture_);

@@ -17,6 +17,7 @@
 #include <fstream>
 
 #include "voxlab/child_process.h"
+#include "voxlab/expected_cache.h"
 #include "voxlab/grader.h"
 #include "voxlab/image.h"
 #include "support/expected_outputs.h"
@@ -75,7 +76,11 @@ public:
 
     // Grades `submission`'s `stage` and checks the invariants above; returns
     // the stage's entry of the report.
-    json gradeAndCheck(const fs::path& submission, const std::string& stage, const std::string& token = "") {
+    // With `renderExpected`, the run renders (or copies from the cache) the
+    // expected outputs itself, as `voxlab grade` does, instead of using the
+    // suite's.
+    json gradeAndCheck(const fs::path& submission, const std::string& stage, const std::string& token = "",
+                       bool renderExpected = false) {
         const fs::path report = scratch("report_" + stage) / "report";
         const fs::path canary = report.parent_path() / "canary";
         fs::create_directories(canary);
@@ -83,6 +88,10 @@ public:
         const std::string before = fingerprint(kSource / "reference") + fingerprint(submission) + fingerprint(canary);
         GraderOptions o = options();
         o.stages = {stage};
+        if (renderExpected) {
+            o.shipped = false;
+            o.expectedDir = (report.parent_path() / "expected").string();
+        }
         const json result = gradeSubmissions({{"hostile", submission.string(), report.string()}}, o).at(0);
         EXPECT_EQ(before, fingerprint(kSource / "reference") + fingerprint(submission) + fingerprint(canary))
             << "something outside the report folder changed";
@@ -236,6 +245,46 @@ TEST_F(HostileSubmissions, CppCannotWriteOutsideOrPlantLinks) {
     EXPECT_NE(report_.find("HOSTILE-RAN"), std::string::npos) << s["message"];
     EXPECT_EQ(report_.find("WROTE"), std::string::npos);
     EXPECT_FALSE(fs::exists("/tmp/voxlab_hostile_was_here"));
+}
+
+// The expected-output cache (voxlab/expected_cache.h) outlives the run: a
+// submission that overwrote an expected image there would be graded against
+// its own picture next time. The attack rewrites every file of the cache,
+// plants one, and reads one; none of it may work, and the reference still
+// scores full marks from the cache afterwards.
+TEST_F(HostileSubmissions, CppCannotPoisonTheCache) {
+    const std::optional<std::string> cache = expected_cache::folder();
+    ASSERT_TRUE(cache) << "the cache is off: this test needs VOXLAB_EXPECTED_CACHE (tests/CMakeLists.txt sets it)";
+    GraderOptions warm = options();  // the cache holds texslice3d's outputs before the attack
+    warm.stages = {"texslice3d"};
+    warm.expectedDir = scratch("warm").string();
+    renderExpectedOutputs(warm);
+    // This reference's entry (other tests may add entries of their own meanwhile).
+    const fs::path entry = fs::path(*cache) / expected_cache::key(VOXLAB_BINARY, (kSource / "reference").string());
+    auto entryFingerprint = [&] {
+        return fingerprint(entry / "texslice3d") + readFile((entry / "reference_stages.so").string());
+    };
+    const std::string before = entryFingerprint();
+    const std::string walk = "    std::error_code ec;\n"
+                             "    for (std::filesystem::recursive_directory_iterator it(\"" + *cache + "\", ec), end; !ec && it != end;"
+                             " it.increment(ec)) {\n"
+                             "        if (!it->is_regular_file(ec)) continue;\n"
+                             "        if (std::ifstream in{it->path()}; in.get() != EOF) std::puts(\"READ cache\");\n"
+                             "        if (std::FILE* f = std::fopen(it->path().c_str(), \"r+\")) { std::fputs(\"x\", f); std::fclose(f);"
+                             " std::puts(\"WROTE cache\"); }\n    }\n";
+    const std::string attack = "    std::puts(\"HOSTILE-RAN\");\n" + walk + "    if (std::FILE* f = std::fopen(\"" + *cache +
+                               "/planted\", \"w\")) { std::fclose(f); std::puts(\"WROTE planted\"); }\n    std::fflush(stdout);\n";
+    fs::path sub = submissionWith("poisoner", "texslice3d", "assignments");
+    std::ofstream(sub / "texslice3d/proxy_geometry.cpp") << hostileCpp(attack, "#include <filesystem>\n");
+    const json s = gradeAndCheck(sub, "texslice3d", "", true);
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_NE(report_.find("HOSTILE-RAN"), std::string::npos) << s["message"];
+    EXPECT_EQ(report_.find("WROTE"), std::string::npos);
+    EXPECT_EQ(report_.find("READ"), std::string::npos);
+    EXPECT_EQ(before, entryFingerprint()) << "the cache changed";
+    EXPECT_FALSE(fs::exists(fs::path(*cache) / "planted"));
+    const json honest = gradeAndCheck(submissionWith("honest", "texslice3d", "reference"), "texslice3d", "", true);
+    EXPECT_EQ(honest["status"], "passed") << honest["message"];
 }
 
 TEST_F(HostileSubmissions, CppCannotKillTheGraderOrLeaveProcesses) {

@@ -7,11 +7,14 @@
 #include <sstream>
 #include <thread>
 
+#include <unistd.h>
+
 #include "commands.h"
 #include "voxlab/assignment.h"
 #include "voxlab/atomic_file.h"
 #include "voxlab/grading.h"
 #include "voxlab/error.h"
+#include "voxlab/expected_cache.h"
 #include "voxlab/grader.h"
 #include "voxlab/html_report.h"
 #include "voxlab/similarity.h"
@@ -32,6 +35,7 @@ std::vector<OptionSpec> limitOptions() {
             {"memory-limit", "MIB", "address space per stage process (default 4096)"},
             {"tolerance", "KEY=VALUE", "an image tolerance for every scene, e.g. min_ssim=0.95 (repeatable; keys: docs/instructors.md)"},
             {"quiet", "", "no progress bar"},
+            {"no-cache", "", "render the reference's expected outputs even when the cache holds them"},
             {"help", "", "show this help"}};
 }
 
@@ -55,6 +59,7 @@ GraderOptions limitsFrom(const Args& args) {
     }
     overTolerance({}, o.tolerance, "option --tolerance");  // a wrong key or value stops here, before any grading
     o.progress = !args.has("quiet");
+    o.cache = !args.has("no-cache");
     return o;
 }
 
@@ -141,6 +146,27 @@ std::string reportSimilarity(const std::vector<Submission>& submissions, const G
            (out / "similarity.html").string();
 }
 
+// --prepare: the expected outputs rendered into the cache (hidden scenes
+// included, as grading renders them), the work folder removed.
+int prepareCache(const Args& args) {
+    const std::optional<std::string> cache = expected_cache::folder();
+    if (!cache) throw Error("--prepare: the expected-output cache is off (VOXLAB_EXPECTED_CACHE is empty or 'off')");
+    if (args.has("no-cache")) throw Error("--prepare fills the cache: it cannot be used with --no-cache");
+    GraderOptions options = limitsFrom(args);
+    options.referenceRoot = args.get("reference").value_or(projectRoot() + "/reference");
+    const fs::path work = fs::path(*cache) / (".prepare_" + std::to_string(getpid()));
+    options.expectedDir = work.string();
+    try {
+        renderExpectedOutputs(options);
+    } catch (...) {
+        fs::remove_all(work);
+        throw;
+    }
+    fs::remove_all(work);
+    std::cout << *cache << "\n";
+    return 0;
+}
+
 }  // namespace
 
 int gradeCommand(int argc, char** argv) {
@@ -149,6 +175,7 @@ int gradeCommand(int argc, char** argv) {
         {"batch", "DIR", "grade every submission folder inside DIR (a class)"},
         {"reference", "DIR", "the reference solution (default: the project's reference/)"},
         {"render-expected", "DIR", "only render the reference's expected outputs into DIR (for a student release)"},
+        {"prepare", "", "only render the reference's expected outputs into the cache, so that grading starts at once"},
         {"submitted-at", "TIME", "when the submission was made (ISO 8601), for the assignment's late policy"},
         {"due", "TIME", "the due date (ISO 8601), instead of the assignment file's"},
         {"similarity-threshold", "X", "--batch: list pairs whose stage code is this alike (0..1, default 0.5) or off"}};
@@ -163,6 +190,7 @@ int gradeCommand(int argc, char** argv) {
         std::cout << options.expectedDir << "\n";
         return 0;
     }
+    if (args.has("prepare")) return prepareCache(args);
     if (args.has("help") || args.has("submission") == args.has("batch")) {
         std::cout << "usage: voxlab grade --submission DIR [--stage S]... [--out REPORT_DIR]\n"
                      "       voxlab grade --batch DIR [--out DIR] [--jobs N]\n\n"

@@ -12,3 +12,7 @@
 set -euo pipefail
 cd "${VOXLAB_AUTOGRADER_ROOT:-/autograder}/source/voxlab"
 tools/setup.sh --grader
+# The reference's expected outputs, rendered now into the image's cache so
+# that each submission's grading renders only the submission's own images
+# (run_autograder reads the same folder).
+VOXLAB_EXPECTED_CACHE="$PWD/expected_cache" LP_NUM_THREADS=1 build/bin/voxlab grade --prepare --quiet

@@ -44,6 +44,8 @@ struct GraderOptions {
     int jobs = 1;                 // stages graded at once (each a process)
     int renderThreads = 0;        // llvmpipe threads per process; 0: $LP_NUM_THREADS, else cores / jobs
     bool progress = true;         // a progress bar on stderr
+    bool cache = true;            // keep the expected outputs between runs (expected_cache.h):
+                                  // a second run with the same inputs copies them instead of rendering
     // Called on each submission's report before it is written (an
     // assignment file's visibility and late policy: assignment.h).
     std::function<void(nlohmann::json& report)> adjustReport;

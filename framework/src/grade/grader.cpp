@@ -13,6 +13,7 @@
 #include <mutex>
 #include <thread>
 
+#include "voxlab/expected_cache.h"
 #include "stage_job.h"
 #include "voxlab/atomic_file.h"
 #include "voxlab/image.h"
@@ -148,8 +149,44 @@ private:
     fs::path path_;
 };
 
+// The reference's C++ stages as a library, loaded by every graded stage
+// (from the cache when the same inputs built it before).
+void buildReferenceLibrary(const GraderOptions& options, const std::string& cacheKey) {
+    std::vector<std::string> sources;
+    for (const std::string& s : gradedStages(options.referenceRoot)) {
+        std::error_code ec;
+        for (const auto& entry : fs::directory_iterator(fs::path(options.referenceRoot) / s, ec))
+            if (entry.path().extension() == ".cpp") sources.push_back(entry.path().string());
+    }
+    if (sources.empty()) return;
+    const std::string library = referenceLibrary(options).string();
+    if (!cacheKey.empty() && expected_cache::restore(cacheKey, "reference_stages.so", library)) return;
+    ChildLimits limits;
+    limits.seconds = 300.0;
+    const ChildResult built = runChild(stageLibraryBuildCommand(sources, library), limits);
+    if (!built.succeeded()) throw Error("the reference's C++ stages do not compile:\n" + built.output);
+    if (!cacheKey.empty()) expected_cache::store(cacheKey, "reference_stages.so", library);
+}
+
+// A stage's entry in the expected-output cache: as grading renders it, or
+// without the hidden scenes.
+std::string cacheEntry(const std::string& stage, const GraderOptions& options) {
+    return options.hiddenScenes ? stage : stage + "@public";
+}
+
+// Copies a stage's expected outputs from the cache; without hidden scenes,
+// the grading entry serves too, less the hidden scenes' images.
+bool restoreExpectedStage(const std::string& stage, const GraderOptions& options, const std::string& cacheKey) {
+    const fs::path out = fs::path(options.expectedDir) / stage;
+    if (expected_cache::restore(cacheKey, cacheEntry(stage, options), out.string())) return true;
+    if (options.hiddenScenes || !expected_cache::restore(cacheKey, stage, out.string())) return false;
+    for (const GradedScene& scene : loadStageManifest(options.referenceRoot, stage).scenes)
+        if (scene.hidden) fs::remove(out / (scene.name + ".png"));
+    return true;
+}
+
 // renderExpectedOutputs, leaving the reference library in place for the
-// stage runs that follow.
+// stage runs that follow. Stages whose outputs the cache holds are copied.
 void renderExpectedWithLibrary(const GraderOptions& given) {
     GraderOptions options = given;
     options.referenceRoot = absolute(options.referenceRoot);
@@ -157,29 +194,24 @@ void renderExpectedWithLibrary(const GraderOptions& given) {
     options.isolateStage = false;
     const std::vector<std::string> stages = chosenStages(options);
     fs::create_directories(options.expectedDir);
-    // The reference's C++ stages as a library, loaded by every graded stage.
-    std::vector<std::string> sources;
-    for (const std::string& s : gradedStages(options.referenceRoot)) {
-        std::error_code ec;
-        for (const auto& entry : fs::directory_iterator(fs::path(options.referenceRoot) / s, ec))
-            if (entry.path().extension() == ".cpp") sources.push_back(entry.path().string());
-    }
-    if (!sources.empty()) {
-        ChildLimits limits;
-        limits.seconds = 300.0;
-        const std::string library = referenceLibrary(options).string();
-        const ChildResult built = runChild(stageLibraryBuildCommand(sources, library), limits);
-        if (!built.succeeded()) throw Error("the reference's C++ stages do not compile:\n" + built.output);
-    }
-    Progress progress(int(stages.size()), options.progress);
-    std::vector<std::string> failures(stages.size());
-    parallelFor(int(stages.size()), options.jobs, [&](int i) {
+    const std::string cacheKey =
+        options.cache && expected_cache::folder() ? expected_cache::key(options.voxlab, options.referenceRoot) : "";
+    buildReferenceLibrary(options, cacheKey);
+    std::vector<std::string> toRender;
+    for (const std::string& stage : stages)
+        if (cacheKey.empty() || !restoreExpectedStage(stage, options, cacheKey)) toRender.push_back(stage);
+    Progress progress(int(toRender.size()), options.progress);
+    std::vector<std::string> failures(toRender.size());
+    parallelFor(int(toRender.size()), options.jobs, [&](int i) {
         try {
-            renderExpectedStage(stages[i], options);
+            renderExpectedStage(toRender[i], options);
+            if (!cacheKey.empty())
+                expected_cache::store(cacheKey, cacheEntry(toRender[i], options),
+                                      (fs::path(options.expectedDir) / toRender[i]).string());
         } catch (const std::exception& e) {
-            failures[i] = stages[i] + ": " + e.what();
+            failures[i] = toRender[i] + ": " + e.what();
         }
-        progress.done("reference rendered: " + stages[i]);
+        progress.done("reference rendered: " + toRender[i]);
     });
     fs::remove_all(fs::path(options.expectedDir) / ".work");
     for (const std::string& f : failures)

@@ -15,6 +15,8 @@
 #include <cstdio>
 #include <iostream>
 
+#include <sys/resource.h>
+
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
@@ -25,6 +27,7 @@
 #include "voxlab/ray_profile.h"
 #include "voxlab/render_engine.h"
 #include "voxlab/volume.h"
+#include "voxlab/volume_bricks.h"
 #include "voxlab_gl.h"
 
 namespace voxlab::cli {
@@ -51,6 +54,21 @@ double percentile(std::vector<double> v, double p) {
     const double at = p / 100.0 * double(v.size() - 1);
     const std::size_t i = std::size_t(at);
     return i + 1 < v.size() ? v[i] + (at - double(i)) * (v[i + 1] - v[i]) : v.back();
+}
+
+// The volume's textures: how many bricks, how many stay on the GPU, how
+// many were uploaded a frame; and the process's peak memory.
+nlohmann::json memoryFigures(const RenderEngine& engine, const Volume& volume, std::size_t uploads, int frames) {
+    const BrickLayout& layout = engine.brickLayout();
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return {{"bricks", layout.bricks.size()},
+            {"brick_grid", {layout.count.x, layout.count.y, layout.count.z}},
+            {"bricks_resident", layout.resident},
+            {"brick_uploads_per_frame", double(uploads) / frames},
+            {"gpu_memory_budget_mib", double(layout.budgetBytes) / double(1 << 20)},
+            {"volume_mib", double(volume.bytes().size()) / double(1 << 20)},
+            {"peak_rss_mib", double(usage.ru_maxrss) / 1024.0}};
 }
 
 }  // namespace
@@ -91,6 +109,7 @@ int benchCommand(int argc, char** argv) {
     engine.setVolume(volume);
     CameraSpec& cam = scene.camera;
     std::vector<double> ms;
+    std::size_t uploadsBefore = 0;
     double samples = 0.0, full = 0.0;  // all frames', and the last frame's, by the sampling rule
     for (int f = 0; f < warmup + frames; ++f) {
         if (f >= warmup && turn != 0.0) {
@@ -101,6 +120,7 @@ int benchCommand(int argc, char** argv) {
         engine.renderOffscreen(scene);
         glFinish();
         const double elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        if (f + 1 == warmup) uploadsBefore = engine.brickUploads();
         if (f < warmup) continue;
         ms.push_back(elapsed);
         if (counted) {
@@ -108,6 +128,7 @@ int benchCommand(int argc, char** argv) {
             samples += full;
         }
     }
+    const nlohmann::json memory = memoryFigures(engine, volume, engine.brickUploads() - uploadsBefore, frames);
     // One more frame, untimed, at the last view: the samples the shaders
     // actually took (with skipping and early termination), counted on the GPU.
     double taken = 0.0;
@@ -135,6 +156,7 @@ int benchCommand(int argc, char** argv) {
                             {"gl", context->description()},
                             {"interpolation", interpolationName(scene.interpolation)},
                             {"skip_empty_space", scene.skipEmptySpace}};
+        j.update(memory);
         if (counted) {
             j["samples_per_frame"] = samples / frames;
             j["samples_per_second"] = samplesPerSecond;
@@ -151,6 +173,14 @@ int benchCommand(int argc, char** argv) {
     std::printf("gl: %s\n", context->description().c_str());
     std::printf("ms/frame: median %.1f (quartiles %.1f .. %.1f, min %.1f, max %.1f); %.2f frames/s\n", median, q1, q3,
                 lowest, highest, median > 0 ? 1000.0 / median : 0.0);
+    if (memory["bricks"].get<std::size_t>() > 1)
+        std::printf("bricks: %zu (%dx%dx%d), %zu on the GPU at once (budget %.0f MiB), %.1f uploaded a frame\n",
+                    memory["bricks"].get<std::size_t>(), memory["brick_grid"][0].get<int>(),
+                    memory["brick_grid"][1].get<int>(), memory["brick_grid"][2].get<int>(),
+                    memory["bricks_resident"].get<std::size_t>(), memory["gpu_memory_budget_mib"].get<double>(),
+                    memory["brick_uploads_per_frame"].get<double>());
+    std::printf("memory: peak %.0f MiB resident (the volume: %.0f MiB)\n", memory["peak_rss_mib"].get<double>(),
+                memory["volume_mib"].get<double>());
     if (counted) {
         std::printf("samples: %.3g a frame by the sampling rule, %.3g a second\n", samples / frames, samplesPerSecond);
         std::printf("skipped: %.1f%% of them (%.3g taken; empty space and early termination)\n", 100.0 * skipped,

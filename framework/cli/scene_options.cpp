@@ -26,6 +26,7 @@ std::vector<OptionSpec> sceneOptions() {
         {"step", "S", "sample spacing along rays, in units of the smallest voxel spacing"},
         {"interpolation", "I", "nearest, trilinear (in the shader), hardware (GPU filtering), bspline or catmull-rom (cubic)"},
         {"skip-empty-space", "on|off", "leap over bricks that cannot change the image (default on)"},
+        {"gpu-memory", "MIB", "texture memory the volume may take; a larger volume is drawn in bricks (default: the driver's)"},
         {"window", "LO,HI", "grey window in data units (default: the data's min,max)"},
         {"tf", "FILE", "1D transfer function (JSON control points)"},
         {"background", "R,G,B", "background colour, 0..1 each"},
@@ -235,6 +236,11 @@ Scene sceneFromArgs(const Args& args, const std::string& command, const Scene* b
     if (auto v = args.get("skip-empty-space")) {
         if (*v != "on" && *v != "off") throw Error("option --skip-empty-space: expected on or off, got '" + *v + "'");
         scene.skipEmptySpace = *v == "on";
+    }
+    if (auto v = args.get("gpu-memory")) {
+        scene.gpuMemoryMiB = parseNumber(*v, "--gpu-memory");
+        if (!(*scene.gpuMemoryMiB >= 1.0 && *scene.gpuMemoryMiB <= kMaxGpuMemoryMiB))
+            throw Error("option --gpu-memory: must be in 1.." + std::to_string(long(kMaxGpuMemoryMiB)) + " MiB");
     }
     if (auto v = args.get("window")) {
         const auto w = parseNumberList(*v, "--window", 2);

@@ -18,7 +18,7 @@ out vec4 frag_color;
 void main() {
     Ray ray = camera_ray();
     float t, value;
-    if (!clip_to_volume(ray) || !first_hit_over_runs(ray, t, value)) {
+    if (!clip_to_volume(ray) || !in_this_brick(ray) || !first_hit_over_runs(ray, t, value)) {
         frag_color = nothing();
         return;
     }

@@ -21,7 +21,7 @@ out vec4 frag_color;
 void main() {
     Ray ray = camera_ray();
     float t;
-    if (!clip_to_volume(ray) || !crossing_over_runs(ray, t)) {
+    if (!clip_to_volume(ray) || !in_this_brick(ray) || !crossing_over_runs(ray, t)) {
         frag_color = nothing();
         return;
     }

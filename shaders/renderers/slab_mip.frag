@@ -13,7 +13,7 @@ out vec4 frag_color;
 
 void main() {
     Ray ray = camera_ray();
-    if (!clip_to_volume(ray) || !clip_to_slab(ray) || sample_count(ray) < 1) {
+    if (!clip_to_volume(ray) || !clip_to_slab(ray) || !in_this_brick(ray) || sample_count(ray) < 1) {
         frag_color = nothing();
         return;
     }

@@ -14,7 +14,7 @@ out vec4 frag_color;
 void main() {
     Ray ray = camera_ray();
     vec3 p;
-    if (!slice_plane_hit(ray, p) || !inside_region(p)) {
+    if (!slice_plane_hit(ray, p) || !inside_region(p) || !point_in_this_brick(p)) {
         frag_color = nothing();
         return;
     }

@@ -30,5 +30,9 @@ void main() {
         return;
     }
     if (u_jitter != 0) jitter_start(ray);
+    if (!in_this_brick(ray)) {
+        frag_color = nothing();
+        return;
+    }
     frag_color = finish(u_back_to_front != 0 ? back_to_front_over_runs(ray) : front_to_back_over_runs(ray));
 }

@@ -12,6 +12,8 @@
 #ifndef VOXLAB_CLASSIFY_GLSL
 #define VOXLAB_CLASSIFY_GLSL
 
+#include "voxlab/bricks.glsl"
+
 uniform vec2 u_window;
 uniform int u_has_tf;
 uniform sampler2D u_tf;
@@ -44,6 +46,8 @@ float opacity_correction(float alpha, float step_units) {
 // function, its colour with its opacity. The result is premultiplied
 // (rgb already times alpha), ready for finish() in voxlab/output.glsl.
 vec4 display_value(float value) {
+    // A bricked pass keeps the value itself; the resolve pass shows it.
+    if (u_bricked != 0 && u_brick_combine >= VOXLAB_BRICK_LARGEST) return vec4(value);
     if (u_has_tf == 0) return vec4(vec3(apply_window(value)), 1.0);
     vec4 c = transfer_function(value);
     return vec4(c.rgb * c.a, c.a);

@@ -103,6 +103,37 @@ int sample_count(Ray ray) {
     return int(floor((ray.t_exit - ray.t_entry) / u_step + 0.5));
 }
 
+// A bricked render (voxlab/bricks.glsl): the part of the clipped ray whose
+// samples lie in this pass's brick, t_entry + (m + 1/2) * u_step in
+// [where the ray enters its box, where it leaves), as sample_run() would
+// cut it, so every sample keeps its place. False when there is none, or
+// when a brick in front already holds the pixel's first hit. Unbricked:
+// true, and the ray is left as it is.
+bool in_this_brick(inout Ray ray) {
+    if (u_bricked == 0) return true;
+    if (u_brick_combine == VOXLAB_BRICK_FIRST_HIT && brick_state().a >= 2.0) return false;
+    vec3 d = ray.direction;
+    vec3 safe = mix(d, vec3(1e-20), equal(d, vec3(0.0)));
+    vec3 t0 = (u_brick_lo - ray.origin) / safe;
+    vec3 t1 = (u_brick_hi - ray.origin) / safe;
+    vec3 near = min(t0, t1), far = max(t0, t1);
+    float enter = max(max(near.x, near.y), near.z), leave = min(min(far.x, far.y), far.z);
+    float n = float(sample_count(ray));
+    int first = int(clamp(ceil((enter - ray.t_entry) / u_step - 0.5), 0.0, n));
+    int end = int(clamp(ceil((leave - ray.t_entry) / u_step - 0.5), 0.0, n));
+    voxlab_brick_first_sample = first;
+    voxlab_brick_samples = max(end - first, 0);
+    if (end <= first) return false;
+    ray.t_exit = ray.t_entry + float(end) * u_step;
+    ray.t_entry = ray.t_entry + float(first) * u_step;
+    return true;
+}
+
+// The same for a single point (the slicer's): whether it is this brick's.
+bool point_in_this_brick(vec3 p) {
+    return u_bricked == 0 || in_brick_box(p);
+}
+
 // Where sample m lies, without counting it as taken (for the empty-space
 // walk, which looks at a sample's brick before anyone samples it).
 vec3 sample_location(Ray ray, int m) {

@@ -49,7 +49,10 @@ int run_end(Ray ray, int first) {
 #ifdef RUN_LARGEST
 float largest_over_runs(Ray ray) {
     if (u_skipping == 0) return RUN_LARGEST(ray);
-    float largest = -3.4e38;
+    // Bricked: start from the bricks in front, so that the walk skips what
+    // cannot beat their maximum, as the whole ray's walk would.
+    float largest = u_bricked != 0 ? brick_state().r : -3.4e38;
+    if (largest >= u_value_range.y) return largest;
     int n = sample_count(ray);
     for (int m = next_sample_above(ray, 0, largest); m < n; m = next_sample_above(ray, m, largest)) {
         int end = run_end(ray, m);
@@ -64,7 +67,8 @@ float largest_over_runs(Ray ray) {
 #ifdef RUN_SMALLEST
 float smallest_over_runs(Ray ray) {
     if (u_skipping == 0) return RUN_SMALLEST(ray);
-    float smallest = 3.4e38;
+    float smallest = u_bricked != 0 ? brick_state().r : 3.4e38;
+    if (smallest <= u_value_range.x) return smallest;
     int n = sample_count(ray);
     for (int m = next_sample_below(ray, 0, smallest); m < n; m = next_sample_below(ray, m, smallest)) {
         int end = run_end(ray, m);
@@ -84,8 +88,12 @@ float smallest_over_runs(Ray ray) {
 // loop would: the image is the same, for at most one run's extra samples.
 #ifdef RUN_FRONT_TO_BACK
 vec4 front_to_back_over_runs(Ray ray) {
-    if (u_skipping == 0) return RUN_FRONT_TO_BACK(ray);
-    vec4 result = vec4(0.0);
+    if (u_skipping == 0 && u_bricked == 0) return RUN_FRONT_TO_BACK(ray);
+    // Bricked: start from what the bricks in front composited, so that early
+    // termination stops where the whole ray's loop would (with skipping off
+    // the brick's part is one run).
+    vec4 result = u_bricked != 0 ? brick_state() : vec4(0.0);
+    if (result.a >= u_early_termination) return result;
     int n = sample_count(ray);
     int length = samples_per_brick();  // 1 once the threshold is near: see above
     for (int m = next_visible_sample(ray, 0); m < n;) {
@@ -104,7 +112,7 @@ vec4 front_to_back_over_runs(Ray ray) {
 #endif
 
 #ifdef RUN_BACK_TO_FRONT
-vec4 back_to_front_over_runs(Ray ray) {
+vec4 back_to_front_within_runs(Ray ray) {
     if (u_skipping == 0) return RUN_BACK_TO_FRONT(ray);
     vec4 result = vec4(0.0);
     for (int m = last_visible_sample(ray, sample_count(ray) - 1); m >= 0; m = last_visible_sample(ray, m)) {
@@ -114,6 +122,14 @@ vec4 back_to_front_over_runs(Ray ray) {
         m = first - 1;
     }
     return result;
+}
+
+// Bricked: this brick's part lies behind what the bricks in front left.
+vec4 back_to_front_over_runs(Ray ray) {
+    vec4 part = back_to_front_within_runs(ray);
+    if (u_bricked == 0) return part;
+    vec4 front = brick_state();
+    return front + (1.0 - front.a) * part;
 }
 #endif
 
@@ -138,6 +154,9 @@ bool first_hit_over_runs(Ray ray, out float t, out float value) {
 // loop over the whole ray, and never a hit of its own.
 #ifdef RUN_CROSSING
 bool crossing_over_runs(Ray ray, out float t) {
+    // Bricked: the part starts one sample early too, where the brick in
+    // front left off (the apron holds it: bricked iso needs a step <= 1).
+    if (u_bricked != 0 && voxlab_brick_first_sample > 0) ray = sample_run(ray, -1, sample_count(ray));
     if (u_skipping == 0) return RUN_CROSSING(ray, t);
     int n = sample_count(ray);
     for (int m = next_visible_sample(ray, 0); m < n; m = next_visible_sample(ray, m)) {

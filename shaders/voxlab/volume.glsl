@@ -13,6 +13,7 @@
 #define VOXLAB_VOLUME_GLSL
 
 #include "voxlab/not_implemented.glsl"
+#include "voxlab/bricks.glsl"
 
 uniform sampler3D u_volume;
 uniform ivec3 u_volume_dims;
@@ -24,8 +25,10 @@ uniform vec2 u_value_range;  // the volume's smallest and largest value
 uniform int u_interpolation;
 
 // The value stored at voxel (i,j,k), clamped to the grid; no filtering.
+// (A bricked volume's texture holds one brick: voxlab/bricks.glsl.)
 float voxel_value(ivec3 ijk) {
     ijk = clamp(ijk, ivec3(0), u_volume_dims - 1);
+    if (u_bricked != 0) ijk = clamp(ijk - u_brick_origin, ivec3(0), u_brick_texture_dims - 1);
     return texelFetch(u_volume, ijk, 0).r * u_value_scale + u_value_offset;
 }
 
@@ -43,7 +46,9 @@ float sample_volume(vec3 p) {
     if (u_interpolation == 0) return sample_nearest(p);
     if (u_interpolation == 1) return sample_trilinear(p);
     if (u_interpolation >= 3) return sample_cubic(p);
-    return textureLod(u_volume, p / u_volume_extent, 0.0).r * u_value_scale + u_value_offset;
+    vec3 texture_position = u_bricked == 0 ? p / u_volume_extent
+                                           : (voxel_coordinates(p) - vec3(u_brick_origin)) / vec3(u_brick_texture_dims);
+    return textureLod(u_volume, texture_position, 0.0).r * u_value_scale + u_value_offset;
 }
 
 bool inside_volume(vec3 p) {

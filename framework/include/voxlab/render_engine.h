@@ -27,6 +27,7 @@
 // middle of the window, radius 1.5, opacity 0.6.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -43,6 +44,8 @@ namespace voxlab {
 
 class EngineDrawContext;
 class SceneVolumes;
+class VolumeTextures;
+struct BrickLayout;
 
 // Whether RenderEngine::countSamples() can count a scene's samples: its
 // renderer casts rays (slices take no samples along rays) and it has no
@@ -113,6 +116,16 @@ public:
     // is the counts.
     double countSamples(const Scene& scene);
 
+    // Bricked rendering (voxlab/volume_bricks.h): the GPU memory the volume's
+    // textures may take unless a scene says otherwise ("gpu_memory"): what
+    // the driver reports (NVIDIA's and AMD's extensions), else a quarter of
+    // the machine's memory for a software renderer, else 1 GiB.
+    std::size_t defaultGpuMemoryBudget() const { return defaultBudget_; }
+    // The layout of the last render's volume textures (one brick unbricked),
+    // and the bricks uploaded since the volume or its budget last changed.
+    const BrickLayout& brickLayout() const;
+    std::size_t brickUploads() const;
+
 private:
     // One transfer-function table on the GPU and what it was baked from.
     struct TransferFunctionSlot {
@@ -175,14 +188,26 @@ private:
     // result for the shaders.
     void bindBricks(const ShaderProgram& prog, const EmptySpaceRule& rule, const TransferFunctionTable* table,
                     const std::vector<Tf2dWidget>& widgets);
+    // render_engine_bricked.cpp
+    std::size_t budgetFor(const Scene& scene) const;
+    BrickCombine checkBricked(const Scene& scene, const Pass& pass) const;
+    void bindVolumeBrick(int brick, const ShaderProgram& prog, const Scene& scene);
+    void drawBricked(const Scene& scene, const Pass& pass, const PassInputs& inputs, const ShaderProgram& prog,
+                     const ShaderConstants& constants, BrickCombine combine,
+                     const std::function<void(const ShaderProgram&)>& prepare);
 
     std::string implementationRoot_;
     ShaderLibrary library_;
     const Volume* volume_ = nullptr;
-    unsigned volumeTexture_ = 0, vao_ = 0;
+    std::unique_ptr<VolumeTextures> volumeTextures_;
+    std::size_t defaultBudget_ = 0;
+    int maxTextureSize_ = 0;
+    unsigned vao_ = 0;
     unsigned fbo_ = 0, colorTexture_ = 0;
     int fboWidth_ = 0, fboHeight_ = 0;
-    unsigned layerFbo_[2] = {0, 0}, layerTexture_[2] = {0, 0};
+    // Two layers (or a bricked render's state, taking turns) and a bricked
+    // render's sample counts.
+    unsigned layerFbo_[3] = {0, 0, 0}, layerTexture_[3] = {0, 0, 0};
     unsigned intermediateFbo_[2] = {0, 0}, intermediateTexture_[2] = {0, 0};
     glm::ivec2 intermediateSize_[2] = {glm::ivec2(0), glm::ivec2(0)};
     int layerWidth_ = 0, layerHeight_ = 0;

@@ -127,6 +127,11 @@ struct Precomputation {
     std::string key;
 };
 
+// How a renderer adds the part of a ray inside one brick of a bricked
+// volume to what the bricks in front of it left (voxlab/volume_bricks.h,
+// shaders/voxlab/bricks.glsl). None: it cannot draw bricks.
+enum class BrickCombine { None = 0, Over = 1, FirstHit = 2, Largest = 3, Smallest = 4, Sum = 5 };
+
 class Renderer {
 public:
     virtual ~Renderer() = default;
@@ -194,6 +199,12 @@ public:
     // voxlab::Error naming the renderer and what it cannot draw; the
     // default draws neither.
     virtual void checkScene(const Scene& scene, const ParameterValues& values) const;
+
+    // How the renderer draws a volume cut into bricks, with these parameter
+    // values (BrickCombine). Throws voxlab::Error naming the renderer and
+    // the parameter when one of them needs the whole volume at once; the
+    // default draws no bricks (None).
+    virtual BrickCombine brickCombine(const ParameterValues& values) const;
 
     // Checks `given` against the declared parameters (unknown name, out of
     // range, not an integer, not a bool) and fills in defaults. Errors name

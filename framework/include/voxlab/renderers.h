@@ -12,6 +12,7 @@ namespace voxlab {
 
 class SlicerRenderer final : public Renderer {
 public:
+    BrickCombine brickCombine(const ParameterValues&) const override { return BrickCombine::FirstHit; }
     std::string id() const override;
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
@@ -19,6 +20,7 @@ public:
 
 class MipRenderer final : public Renderer {
 public:
+    BrickCombine brickCombine(const ParameterValues&) const override { return BrickCombine::Largest; }
     std::string id() const override;
     std::string description() const override;
     ProfileModel profileModel() const override { return ProfileModel::Maximum; }
@@ -34,6 +36,7 @@ public:
 //   r.add<RayValueRenderer>("minip", "minimum intensity projection: ...", ProfileModel::Minimum);
 class RayValueRenderer final : public Renderer {
 public:
+    BrickCombine brickCombine(const ParameterValues& values) const override;
     RayValueRenderer(std::string stage, std::string description, ProfileModel profile = ProfileModel::None,
                      std::vector<ParameterSpec> parameters = {});
     std::string id() const override { return stage_; }
@@ -50,6 +53,7 @@ private:
 
 class FirstHitRenderer final : public Renderer {
 public:
+    BrickCombine brickCombine(const ParameterValues&) const override { return BrickCombine::FirstHit; }
     std::string id() const override;
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
@@ -59,6 +63,7 @@ public:
 
 class SlabMipRenderer final : public Renderer {
 public:
+    BrickCombine brickCombine(const ParameterValues&) const override { return BrickCombine::Largest; }
     std::string id() const override;
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
@@ -69,6 +74,7 @@ public:
 
 class CompositeRenderer final : public Renderer {
 public:
+    BrickCombine brickCombine(const ParameterValues& values) const override;
     std::string id() const override;
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
@@ -89,6 +95,7 @@ glm::ivec3 lightVolumeSize(glm::ivec3 volumeDims, int resolution);
 
 class IsoRenderer final : public Renderer {
 public:
+    BrickCombine brickCombine(const ParameterValues&) const override { return BrickCombine::FirstHit; }
     std::string id() const override;
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
@@ -99,6 +106,7 @@ public:
 
 class Tf2dRenderer final : public Renderer {
 public:
+    BrickCombine brickCombine(const ParameterValues&) const override { return BrickCombine::Over; }
     std::string id() const override;
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;

@@ -177,6 +177,7 @@ struct ClipPlane {
 
 // Limits every way of writing a scene (JSON, command line, viewer) obeys.
 constexpr int kMaxImageSize = 8192;  // pixels, per side
+constexpr double kMaxGpuMemoryMiB = 1 << 24;  // 16 TiB: "gpu_memory" in [1, this]
 constexpr double kMaxStep = 64.0;    // in smallest spacings; steps are in (0, kMaxStep]
 
 struct Scene {
@@ -190,6 +191,10 @@ struct Scene {
     // Empty-space skipping (empty_space.h): leaves out samples that cannot
     // change the image. On by default; the grader turns it off.
     bool skipEmptySpace = true;
+    // The GPU memory the volume's textures may take, in MiB ("gpu_memory",
+    // --gpu-memory); past it the volume is drawn in bricks (volume_bricks.h).
+    // Default: RenderEngine::defaultGpuMemoryBudget().
+    std::optional<double> gpuMemoryMiB;
     std::optional<glm::dvec2> window;  // default: the dataset's min..max
     glm::vec3 background{0.0f};
     ParameterValues parameters;

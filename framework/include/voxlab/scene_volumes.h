@@ -90,6 +90,12 @@ private:
 // int16 shifted by +32768 into R16 so that no value is lost) and returns the
 // (scale, offset) that turns a texel back into a data value.
 glm::vec2 uploadVolumeTexture(unsigned texture, const Volume& volume);
+// The same for the box of `size` voxels at `origin` (a brick with its apron).
+// The shader reads texel t in [0,1] and recovers the data value as
+// t*scale + offset (volumeTextureScaleOffset), so every renderer works in
+// the data's own units.
+glm::vec2 volumeTextureScaleOffset(VoxelType type);
+glm::vec2 uploadVolumeBox(unsigned texture, const Volume& volume, const glm::ivec3& origin, const glm::ivec3& size);
 
 // Uploads a baked transfer-function table to a 2D texture, row-major,
 // kTransferFunctionRowLength entries per row (see transfer_function.h).

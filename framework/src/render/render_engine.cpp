@@ -8,17 +8,12 @@
 #include "voxlab/error.h"
 #include "voxlab/scene_volumes.h"
 #include "engine_draw_context.h"
+#include "engine_internal.h"
+#include "volume_textures.h"
 #include "voxlab_gl.h"
 
 namespace voxlab {
 namespace {
-
-// Texture units used by the framework's GLSL libraries.
-constexpr int kVolumeUnit = 0;
-constexpr int kTransferFunctionUnit = 1;
-constexpr int kGradientUnit = 2;
-constexpr int kLayerUnit = 3;  // and kLayerUnit + 1 (cut_compose.frag)
-constexpr int kBsplineUnit = 9;  // after the precomputed textures (6, 7)
 
 TransferFunction2D fallbackTransferFunction2D(glm::dvec2 window) {
     Tf2dWidget w;
@@ -98,7 +93,9 @@ RenderEngine::RenderEngine(std::string implementationRoot)
     for (const auto& renderer : rendererRegistry().all())
         for (const auto& [name, text] : renderer->generatedShaders()) library_.addGenerated(name, text);
     glGenVertexArrays(1, &vao_);  // core profile: drawing needs a bound VAO
-    glGenTextures(1, &volumeTexture_);
+    volumeTextures_ = std::make_unique<VolumeTextures>();
+    glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxTextureSize_);
+    defaultBudget_ = driverGpuMemoryBudget();
     glGenTextures(1, &gradientTexture_);
     glGenTextures(1, &bsplineTexture_);
     for (TransferFunctionSlot& slot : tf_) glGenTextures(1, &slot.texture);
@@ -110,12 +107,12 @@ RenderEngine::~RenderEngine() {
     programs_.clear();
     sceneVolumes_.reset();
     glDeleteVertexArrays(1, &vao_);
-    glDeleteTextures(1, &volumeTexture_);
+    volumeTextures_.reset();
     glDeleteTextures(1, &gradientTexture_);
     glDeleteTextures(1, &bsplineTexture_);
     for (TransferFunctionSlot& slot : tf_) glDeleteTextures(1, &slot.texture);
     deleteFloatTarget(fbo_, colorTexture_);
-    for (int i = 0; i < 2; ++i) deleteFloatTarget(layerFbo_[i], layerTexture_[i]);
+    for (int i = 0; i < 3; ++i) deleteFloatTarget(layerFbo_[i], layerTexture_[i]);
     for (int i = 0; i < 2; ++i) deleteFloatTarget(intermediateFbo_[i], intermediateTexture_[i]);
     for (unsigned& t : sliceStacks_)
         if (t) glDeleteTextures(1, &t);
@@ -128,17 +125,15 @@ RenderEngine::~RenderEngine() {
     if (precomputeFbo_) glDeleteFramebuffers(1, &precomputeFbo_);
 }
 
+// A volume beyond one texture's size or the budget is cut into bricks
+// (volume_bricks.h); the textures are made for the default budget now, and
+// again at the first render whose scene sets another ("gpu_memory").
 void RenderEngine::setVolume(const Volume& volume) {
-    const glm::ivec3 d = volume.dims();
-    GLint maxSize = 0;
-    glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
-    if (d.x > maxSize || d.y > maxSize || d.z > maxSize)
-        throw Error(volume.name() + ": dimensions exceed this GPU's 3D texture limit of " +
-                    std::to_string(maxSize));
-    const glm::vec2 scaleOffset = uploadVolumeTexture(volumeTexture_, volume);
+    ++volumeGeneration_;
+    volumeTextures_->set(volume, volumeGeneration_, defaultBudget_, maxTextureSize_);
+    const glm::vec2 scaleOffset = volumeTextures_->scaleOffset();
     valueScale_ = scaleOffset.x, valueOffset_ = scaleOffset.y;
     volume_ = &volume;
-    ++volumeGeneration_;
     for (TransferFunctionSlot& slot : tf_) slot.table.size = 0;  // the value range may differ
 }
 
@@ -262,7 +257,7 @@ void RenderEngine::ensureIntermediate(int target, glm::ivec2 size) {
 
 void RenderEngine::ensureLayers(int width, int height) {
     if (layerFbo_[0] && width == layerWidth_ && height == layerHeight_) return;
-    for (int i = 0; i < 2; ++i) createFloatTarget(&layerFbo_[i], &layerTexture_[i], width, height);
+    for (int i = 0; i < 3; ++i) createFloatTarget(&layerFbo_[i], &layerTexture_[i], width, height);
     layerWidth_ = width, layerHeight_ = height;
 }
 
@@ -371,6 +366,8 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     // (The other side of a cutting plane may be drawn by a renderer that
     // ignores them.)
     if (pass.slot == 0) renderer.checkScene(scene, pass.values);
+    volumeTextures_->set(*volume_, volumeGeneration_, budgetFor(scene), maxTextureSize_);
+    const BrickCombine combine = checkBricked(scene, pass);  // None: one texture
     sceneVolumes_->prepare(scene, *volume_, volumeGeneration_, inputs.tf);
     // The bricks know the first volume only: a fused second volume can show
     // anywhere. A cubic sample reads two voxels beyond its cell and may
@@ -383,7 +380,9 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
                                  {"u_clip_plane", pass.clip ? 1 : 0},
                                  {"u_clip_plane_count", int(std::min(scene.clipPlanes.size(), kMaxClipPlanes))},
                                  {"u_skipping", skipping ? 1 : 0},
-                                 {"u_count_samples", countingSamples_ ? 1 : 0}};
+                                 {"u_count_samples", countingSamples_ ? 1 : 0},
+                                 {"u_bricked", combine != BrickCombine::None ? 1 : 0},
+                                 {"u_brick_combine", int(combine)}};
     for (const ParameterSpec& p : renderer.parameters())
         if (p.type == ParameterType::Bool) constants["u_" + p.name] = pass.values.at(p.name) != 0.0 ? 1 : 0;
     sceneVolumes_->addConstants(scene, &constants);
@@ -391,11 +390,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     lastRenderSources_.clear();
     noteSources(prog);
 
-    glActiveTexture(GL_TEXTURE0 + kVolumeUnit);
-    glBindTexture(GL_TEXTURE_3D, volumeTexture_);
-    const GLint filter = scene.interpolation == Interpolation::Hardware ? GL_LINEAR : GL_NEAREST;
-    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, filter);
-    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, filter);
+    if (combine == BrickCombine::None) bindVolumeBrick(0, prog, scene);
     TransferFunctionSlot& slot = tf_[pass.slot];
     if (inputs.tf) uploadTransferFunction(slot, *inputs.tf);
     glActiveTexture(GL_TEXTURE0 + kTransferFunctionUnit);
@@ -413,14 +408,17 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     for (std::size_t i = 0; i < precomputations.size(); ++i)
         runPrecomputation(precomputations[i], int(i), scene, pass, inputs, constants);
 
-    prog.use();
-    setPassUniforms(prog, scene, pass, inputs);
-    bindPrecomputations(prog, precomputations, pass.slot);
-    sceneVolumes_->bind(prog, scene, *volume_);
     // With a label map a brick is empty only if no label's function shows it.
     const TransferFunctionTable* table =
         scene.labels ? &sceneVolumes_->labelUnionTable() : inputs.tf ? &slot.table : nullptr;
-    if (skipping) bindBricks(prog, renderer.emptySpaceRule(pass.values), table, inputs.widgets);
+    const auto prepare = [&](const ShaderProgram& p) {
+        p.use();
+        setPassUniforms(p, scene, pass, inputs);
+        bindPrecomputations(p, precomputations, pass.slot);
+        sceneVolumes_->bind(p, scene, *volume_);
+        if (skipping) bindBricks(p, renderer.emptySpaceRule(pass.values), table, inputs.widgets);
+    };
+    prepare(prog);
 
     glDisable(GL_DEPTH_TEST);
     if (renderer.objectOrder()) {
@@ -437,6 +435,9 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
         renderer.draw(context, pass.values);
         glDisable(GL_BLEND);
         glDisable(GL_DEPTH_TEST);
+    } else if (combine != BrickCombine::None) {
+        constants["u_skipping"] = skipping ? 1 : 0;
+        drawBricked(scene, pass, inputs, prog, constants, combine, prepare);
     } else {
         glDisable(GL_BLEND);
         glBindVertexArray(vao_);

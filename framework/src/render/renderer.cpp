@@ -49,6 +49,8 @@ void Renderer::checkScene(const Scene& scene, const ParameterValues&) const {
     if (scene.fusion) throw Error(id() + ": does not draw a fused second volume (scene \"fusion\"; composite does)");
 }
 
+BrickCombine Renderer::brickCombine(const ParameterValues&) const { return BrickCombine::None; }
+
 std::optional<GradientEstimator> Renderer::precomputedGradients(const ParameterValues& values) const {
     const auto on = [&](const char* name) {
         const auto it = values.find(name);

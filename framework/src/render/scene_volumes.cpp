@@ -54,37 +54,68 @@ glm::dvec2 pointRange(const TransferFunction& f) {
 }  // namespace
 
 glm::vec2 uploadVolumeTexture(unsigned texture, const Volume& volume) {
+    return uploadVolumeBox(texture, volume, glm::ivec3(0), volume.dims());
+}
+
+glm::vec2 volumeTextureScaleOffset(VoxelType type) {
+    switch (type) {
+        case VoxelType::UInt8: return {255.0f, 0.0f};
+        case VoxelType::UInt16: return {65535.0f, 0.0f};
+        case VoxelType::Int16: return {65535.0f, -32768.0f};
+        case VoxelType::Float32: break;
+    }
+    return {1.0f, 0.0f};
+}
+
+// Straight from the volume's memory: the unpack state picks the box's rows
+// out of the whole volume, so no copy of the box is made (int16 is shifted
+// one z-slice at a time).
+glm::vec2 uploadVolumeBox(unsigned texture, const Volume& volume, const glm::ivec3& origin, const glm::ivec3& size) {
     const glm::ivec3 d = volume.dims();
     glBindTexture(GL_TEXTURE_3D, texture);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    // The shader reads texel t in [0,1] and recovers the data value as
-    // t*scale + offset, so every renderer works in the data's own units.
-    glm::vec2 scaleOffset(1.0f, 0.0f);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, d.x);
+    glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, d.y);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, origin.x);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, origin.y);
+    glPixelStorei(GL_UNPACK_SKIP_IMAGES, origin.z);
     switch (volume.type()) {
         case VoxelType::UInt8:
-            glTexImage3D(GL_TEXTURE_3D, 0, GL_R8, d.x, d.y, d.z, 0, GL_RED, GL_UNSIGNED_BYTE, volume.data());
-            scaleOffset = {255.0f, 0.0f};
+            glTexImage3D(GL_TEXTURE_3D, 0, GL_R8, size.x, size.y, size.z, 0, GL_RED, GL_UNSIGNED_BYTE, volume.data());
             break;
         case VoxelType::UInt16:
-            glTexImage3D(GL_TEXTURE_3D, 0, GL_R16, d.x, d.y, d.z, 0, GL_RED, GL_UNSIGNED_SHORT, volume.data());
-            scaleOffset = {65535.0f, 0.0f};
+            glTexImage3D(GL_TEXTURE_3D, 0, GL_R16, size.x, size.y, size.z, 0, GL_RED, GL_UNSIGNED_SHORT, volume.data());
             break;
         case VoxelType::Int16: {
             // R16_SNORM would merge -32768 and -32767; shifting keeps every value.
-            std::vector<std::uint16_t> shifted(volume.voxelCount());
+            glTexImage3D(GL_TEXTURE_3D, 0, GL_R16, size.x, size.y, size.z, 0, GL_RED, GL_UNSIGNED_SHORT, nullptr);
+            glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+            glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, 0);
+            glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+            glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
+            glPixelStorei(GL_UNPACK_SKIP_IMAGES, 0);
+            std::vector<std::uint16_t> slice(std::size_t(size.x) * std::size_t(size.y));
             const auto* src = static_cast<const std::int16_t*>(volume.data());
-            for (std::size_t i = 0; i < shifted.size(); ++i) shifted[i] = std::uint16_t(int(src[i]) + 32768);
-            glTexImage3D(GL_TEXTURE_3D, 0, GL_R16, d.x, d.y, d.z, 0, GL_RED, GL_UNSIGNED_SHORT, shifted.data());
-            scaleOffset = {65535.0f, -32768.0f};
+            for (int z = 0; z < size.z; ++z) {
+                for (int y = 0; y < size.y; ++y) {
+                    const std::int16_t* row =
+                        src + (std::size_t(origin.z + z) * d.y + std::size_t(origin.y + y)) * d.x + origin.x;
+                    for (int x = 0; x < size.x; ++x) slice[std::size_t(y) * size.x + x] = std::uint16_t(int(row[x]) + 32768);
+                }
+                glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z, size.x, size.y, 1, GL_RED, GL_UNSIGNED_SHORT, slice.data());
+            }
             break;
         }
         case VoxelType::Float32:
-            glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, d.x, d.y, d.z, 0, GL_RED, GL_FLOAT, volume.data());
+            glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, size.x, size.y, size.z, 0, GL_RED, GL_FLOAT, volume.data());
             break;
     }
+    for (GLenum name : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS,
+                        GL_UNPACK_SKIP_IMAGES})
+        glPixelStorei(name, 0);
     textureParameters(GL_TEXTURE_3D, GL_NEAREST);
     checkGlError("uploading a volume texture");
-    return scaleOffset;
+    return volumeTextureScaleOffset(volume.type());
 }
 
 void uploadTableTexture(unsigned texture, const TransferFunctionTable& table) {

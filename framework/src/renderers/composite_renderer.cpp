@@ -75,6 +75,18 @@ void CompositeRenderer::checkScene(const Scene& scene, const ParameterValues& va
             throw Error(std::string("composite: parameter '") + name + "' does not combine with " + other);
 }
 
+// Composited front to back, brick after brick. Three options read beyond
+// a brick's apron: ambient occlusion up to 16 voxels around a sample, the
+// light volume of shadows the whole volume, and a pre-integrated segment the
+// next sample, which may lie in the next brick.
+BrickCombine CompositeRenderer::brickCombine(const ParameterValues& values) const {
+    for (const char* name : {"ambient_occlusion", "shadows", "preintegrated"})
+        if (on(values, name))
+            throw Error(std::string("composite: parameter '") + name +
+                        "' reads beyond one brick and does not combine with a bricked volume");
+    return BrickCombine::Over;
+}
+
 // A pre-integrated segment reaches from its sample to the next one, which
 // may lie in a brick that a skipped one borders: skipping would drop the
 // part of the segment in the visible brick. So it is off for them.

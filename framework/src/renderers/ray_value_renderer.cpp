@@ -37,6 +37,18 @@ RayValueRenderer::RayValueRenderer(std::string stage, std::string description, P
     : stage_(std::move(stage)), description_(std::move(description)), profile_(profile),
       parameters_(std::move(parameters)) {}
 
+// A largest or smallest value, or a mean, is the same over the parts of a
+// ray as over the whole; a value that depends on the samples in front (the
+// attenuated MIP) is not.
+BrickCombine RayValueRenderer::brickCombine(const ParameterValues&) const {
+    switch (profile_) {
+        case ProfileModel::Maximum: return BrickCombine::Largest;
+        case ProfileModel::Minimum: return BrickCombine::Smallest;
+        case ProfileModel::Mean: return BrickCombine::Sum;
+        default: return BrickCombine::None;
+    }
+}
+
 std::map<std::string, std::string> RayValueRenderer::generatedShaders() const {
     const std::string templatePath = projectRoot() + "/shaders/renderers/ray_value.frag.in";
     std::ifstream in(templatePath, std::ios::binary);

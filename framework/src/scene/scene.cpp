@@ -361,7 +361,7 @@ Scene Parser::parse(const json& j) const {
     if (!j.is_object()) throw Error((where_.empty() ? "" : where_ + ": ") + "expected a JSON object");
     onlyKeys(j, "", {"dataset", "renderer", "camera", "projection", "size", "sampling", "window",
                      "background", "parameters", "transfer_function", "tf2d", "roi", "cutting_plane", "labels",
-                     "fusion", "clip_planes"});
+                     "fusion", "clip_planes", "gpu_memory"});
     Scene s;
 
     if (!j.contains("dataset")) fail("dataset", "missing (required)");
@@ -395,6 +395,12 @@ Scene Parser::parse(const json& j) const {
     if (j.contains("sampling")) sampling(j["sampling"], &s);
 
     if (j.contains("window")) s.window = window(j["window"], "window");
+    if (j.contains("gpu_memory")) {
+        const json& m = j["gpu_memory"];
+        if (!m.is_number() || !(m.get<double>() >= 1.0 && m.get<double>() <= kMaxGpuMemoryMiB))
+            fail("gpu_memory", "expected a number of MiB in 1.." + std::to_string(long(kMaxGpuMemoryMiB)));
+        s.gpuMemoryMiB = m.get<double>();
+    }
 
     if (j.contains("background")) {
         const json& b = j["background"];
@@ -485,6 +491,7 @@ json Scene::toJson() const {
     j["sampling"] = {{"step", step}, {"interpolation", interpolationName(interpolation)}};
     if (!skipEmptySpace) j["sampling"]["skip_empty_space"] = false;  // on unless said
     if (window) j["window"] = {window->x, window->y};
+    if (gpuMemoryMiB) j["gpu_memory"] = *gpuMemoryMiB;
     j["background"] = {shortFloat(background.r), shortFloat(background.g), shortFloat(background.b)};
     j["parameters"] = json::object();
     for (const auto& [name, value] : parameters) j["parameters"][name] = value;

@@ -24,8 +24,13 @@
 //             offset, size and the warp's 9, column by column), or 'N'/'E' then
 //             uint32 length and the message of a NotImplemented / other
 //             exception.
-// One call is one round trip (microseconds): marching cubes calls cubeCase
-// once per cube, so its grading scenes stay small (at most about 10^5 cubes).
+//   batches  'c' (cubeCase) and 'x' (edgeCrossing): uint32 count <= 16384,
+//             then 8 doubles a call (the 8 values; a, b, va, vb) and one
+//             isovalue; 'O' then count int32 / count points of 3 doubles, or
+//             the first failing call's 'N'/'E' (stage_library.h's
+//             StageBatches: marching cubes sends a slab of cubes at a time).
+// One call is one round trip (microseconds); a batch is one round trip for
+// thousands of calls.
 #pragma once
 
 #include <string>

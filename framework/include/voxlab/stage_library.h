@@ -10,6 +10,7 @@
 // The framework calls the stages only through cppStages().
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,24 @@ struct CppStages {
 // The table in use: the linked-in stages unless a library was loaded.
 const CppStages& cppStages();
 
+// Many calls of one function at once, as marching cubes makes them (a slab
+// of cubes, then the slab's new edges): the same results as calling the
+// table's function for each in order, stopping at the first that throws.
+// By default a loop over the table; where the function runs in a stage
+// host (stage_host.h) a batch is one round trip instead of one per call.
+struct EdgeCrossingCall {
+    glm::dvec3 a, b;
+    double va, vb;
+};
+struct StageBatches {
+    // values: 8 per cube (marching_cubes.h's corner order); cases: count.
+    void (*cubeCases)(const double* values, std::size_t count, double isovalue, int* cases);
+    void (*edgeCrossings)(const EdgeCrossingCall* calls, std::size_t count, double isovalue, glm::dvec3* points);
+};
+const StageBatches& stageBatches();
+// Replaces the batches that `batches` sets (the non-null ones).
+void overrideStageBatches(const StageBatches& batches);
+
 // Whether `name` is a function of the table above ("planeBoxPolygon").
 bool isStageFunction(const std::string& name);
 
@@ -52,6 +71,10 @@ std::vector<std::string> overrideStageFunctions(const CppStages& functions);
 // Returns their names. Throws voxlab::Error naming the library when it
 // cannot be loaded (an undefined symbol, say).
 std::vector<std::string> loadStageLibrary(const std::string& path);
+
+// stage_exports.cpp compiled when the framework was built, or "" when that
+// object is gone (the command below then compiles the source).
+std::string stageExportsObject();
 
 // The command that builds a stage library from `sources` (paths relative to
 // `workingDir`, where it is run) into `output`: the compiler this framework

@@ -23,6 +23,7 @@ namespace {
 
 constexpr std::uint32_t kMaxPoints = 64;      // a plane meets a box in at most 6
 constexpr std::uint32_t kMaxMessage = 4096;
+constexpr std::uint32_t kMaxBatch = 1u << 14;  // calls in one batch ('c', 'x')
 // The host reads calls on stdin and answers on fd 3, so that what the
 // stage prints (stdout, stderr) goes to the worker's log, not into answers.
 constexpr int kAnswers = 3;
@@ -111,6 +112,41 @@ void serveCall(char op, const CppStages& stages) {
     }
 }
 
+// A batch ('c' cube cases, 'x' edge crossings): uint32 count <= kMaxBatch,
+// then 8 doubles a call and the isovalue; the answer is 'O' and the count's
+// results, or the first call's error.
+void serveBatch(char op, const CppStages& stages) {
+    std::uint32_t count = 0;
+    if (!readAll(0, &count, 4)) _exit(0);
+    if (count > kMaxBatch) _exit(2);
+    std::vector<double> a(std::size_t(count) * 8 + 1);
+    if (!readAll(0, a.data(), a.size() * sizeof(double))) _exit(0);
+    const double isovalue = a.back();
+    try {
+        if (op == 'c') {
+            if (!stages.cubeCase) throw NotImplemented("cubeCase");
+            std::vector<std::int32_t> cases(count);
+            for (std::uint32_t i = 0; i < count; ++i) cases[i] = stages.cubeCase(&a[8 * std::size_t(i)], isovalue);
+            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, cases.data(), cases.size() * 4)) _exit(3);
+        } else {
+            if (!stages.edgeCrossing) throw NotImplemented("edgeCrossing");
+            std::vector<glm::dvec3> points(count);
+            for (std::uint32_t i = 0; i < count; ++i) {
+                const double* c = &a[8 * std::size_t(i)];
+                points[i] = stages.edgeCrossing({c[0], c[1], c[2]}, {c[3], c[4], c[5]}, c[6], c[7], isovalue);
+            }
+            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, points.data(), points.size() * sizeof(glm::dvec3)))
+                _exit(3);
+        }
+    } catch (const NotImplemented& e) {
+        sendMessage('N', e.what());
+    } catch (const std::exception& e) {
+        sendMessage('E', e.what());
+    } catch (...) {
+        sendMessage('E', "the stage threw something that is not an exception");
+    }
+}
+
 // --- The worker's stubs. ---
 
 struct Host {
@@ -141,10 +177,9 @@ Host& host() {
     throw StageCrashed(h.died.empty() ? "the stage's C++ (" + h.library + ") stopped answering" : h.died);
 }
 
-// Sends a call; returns when the answer's status byte says it succeeded.
-void call(char op, const double* args, int count) {
+// Reads the answer's status; returns when it says the call succeeded.
+void awaitAnswer() {
     Host& h = host();
-    if (!sendAll(h.to, &op, 1) || !sendAll(h.to, args, std::size_t(count) * sizeof(double))) hostFailed();
     char status = 0;
     if (!readAll(h.from, &status, 1)) hostFailed();
     if (status == 'O') return;
@@ -154,6 +189,42 @@ void call(char op, const double* args, int count) {
     if (!readAll(h.from, message.data(), length)) hostFailed();
     if (status == 'N') throw NotImplemented(message.substr(0, message.find(' ')));
     throw Error(message);
+}
+
+// Sends a call; returns when the answer's status byte says it succeeded.
+void call(char op, const double* args, int count) {
+    Host& h = host();
+    if (!sendAll(h.to, &op, 1) || !sendAll(h.to, args, std::size_t(count) * sizeof(double))) hostFailed();
+    awaitAnswer();
+}
+
+// Sends a batch of `count` calls of 8 doubles each (kMaxBatch at a time).
+template <class Answer>
+void callBatch(char op, const double* args, std::size_t count, double isovalue, Answer* answers) {
+    Host& h = host();
+    for (std::size_t first = 0; first < count; first += kMaxBatch) {
+        const std::uint32_t n = std::uint32_t(std::min<std::size_t>(kMaxBatch, count - first));
+        if (!sendAll(h.to, &op, 1) || !sendAll(h.to, &n, 4) || !sendAll(h.to, args + 8 * first, n * 8 * sizeof(double)) ||
+            !sendAll(h.to, &isovalue, sizeof isovalue))
+            hostFailed();
+        awaitAnswer();
+        if (!readAll(h.from, answers + first, n * sizeof(Answer))) hostFailed();
+    }
+}
+
+void remoteCubeCases(const double* values, std::size_t count, double isovalue, int* cases) {
+    static_assert(sizeof(int) == sizeof(std::int32_t));
+    callBatch('c', values, count, isovalue, cases);
+}
+
+void remoteEdgeCrossings(const EdgeCrossingCall* calls, std::size_t count, double isovalue, glm::dvec3* points) {
+    std::vector<double> args(count * 8);
+    for (std::size_t i = 0; i < count; ++i) {
+        const EdgeCrossingCall& c = calls[i];
+        const double packed[8] = {c.a.x, c.a.y, c.a.z, c.b.x, c.b.y, c.b.z, c.va, c.vb};
+        std::copy(packed, packed + 8, &args[8 * i]);
+    }
+    callBatch('x', args.data(), count, isovalue, points);
 }
 
 std::vector<glm::dvec3> remotePlaneBoxPolygon(glm::dvec3 n, double d, glm::dvec3 lo, glm::dvec3 hi) {
@@ -234,6 +305,10 @@ int runStageHost(const std::string& library) {
     const CppStages stages = get();
     signal(SIGPIPE, SIG_DFL);
     for (char op; readAll(0, &op, 1);) {
+        if (op == 'c' || op == 'x') {
+            serveBatch(op, stages);
+            continue;
+        }
         if (op != 'P' && op != 'A' && op != 'C' && op != 'X' && op != 'S' && op != 'W') return 2;
         serveCall(op, stages);
     }
@@ -270,6 +345,10 @@ void useStageHost(const std::string& voxlab, const std::string& library, const s
         else throw Error("'" + f + "' is not a C++ stage function");
     }
     overrideStageFunctions(routed);
+    StageBatches batches{};
+    if (routed.cubeCase) batches.cubeCases = &remoteCubeCases;
+    if (routed.edgeCrossing) batches.edgeCrossings = &remoteEdgeCrossings;
+    overrideStageBatches(batches);
 }
 
 }  // namespace voxlab

@@ -166,7 +166,9 @@ ChildLimits sandboxLimits(double seconds, const std::vector<std::string>& readab
 // sandboxed: a compiler can be told to read any file (#include "/etc/...").
 bool buildLibrary(const std::vector<std::string>& sources, const std::string& root, const fs::path& lib,
                   RunOutcome& outcome) {
-    ChildLimits limits = sandboxLimits(120.0, {root, projectRoot() + "/framework"});
+    std::vector<std::string> readable = {root, projectRoot() + "/framework"};
+    if (const std::string exports = stageExportsObject(); !exports.empty()) readable.push_back(exports);
+    ChildLimits limits = sandboxLimits(120.0, readable);
     limits.workingDir = root;
     limits.writable = {lib.string()};
     limits.environment["TMPDIR"] = lib.string();

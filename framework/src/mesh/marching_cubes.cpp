@@ -125,37 +125,54 @@ const std::array<CaseTriangles, 256>& marchingCubesTable() {
     return table;
 }
 
+// The stage is called a slab of cubes at a time (one k), first every
+// cube's case, then the crossing of every edge the slab's triangles meet
+// first (stage_library.h's batches: one round trip each when the stage runs
+// in a stage host). The mesh is the one a cube-by-cube loop makes: vertices
+// are numbered in the order their edges are first used.
 TriangleMesh extractIsosurface(const Volume& volume, double isovalue, std::size_t maxTriangles) {
     const auto& table = marchingCubesTable();
-    const CppStages& stage = cppStages();
+    const StageBatches& batch = stageBatches();
     const glm::ivec3 d = volume.dims();
     const glm::dvec3 spacing = volume.spacing();
     TriangleMesh mesh;
     std::unordered_map<std::uint64_t, std::uint32_t> vertexOfEdge;
     const auto centre = [&](glm::ivec3 ijk) { return (glm::dvec3(ijk) + 0.5) * spacing; };
-    for (int k = 0; k + 1 < d.z; ++k)
+    const std::size_t cubes = std::size_t(std::max(d.x - 1, 0)) * std::size_t(std::max(d.y - 1, 0));
+    std::vector<double> values(cubes * 8);
+    std::vector<int> cases(cubes);
+    std::vector<EdgeCrossingCall> crossings;
+    std::vector<glm::dvec3> points;
+    for (int k = 0; k + 1 < d.z; ++k) {
+        double* v = values.data();
         for (int j = 0; j + 1 < d.y; ++j)
-            for (int i = 0; i + 1 < d.x; ++i) {
-                double values[8];
-                for (int c = 0; c < 8; ++c) {
+            for (int i = 0; i + 1 < d.x; ++i)
+                for (int c = 0; c < 8; ++c, ++v) {
                     const glm::ivec3 p = glm::ivec3(i, j, k) + cubeCorner(c);
-                    values[c] = volume.value(p.x, p.y, p.z);
+                    *v = volume.value(p.x, p.y, p.z);
                 }
-                const int cubeCase = stage.cubeCase(values, isovalue);
+        batch.cubeCases(values.data(), cubes, isovalue, cases.data());
+        const std::uint32_t firstNew = std::uint32_t(mesh.vertices.size());
+        crossings.clear();
+        std::size_t cube = 0;
+        for (int j = 0; j + 1 < d.y; ++j)
+            for (int i = 0; i + 1 < d.x; ++i, ++cube) {
+                const int cubeCase = cases[cube];
                 if (cubeCase < 0 || cubeCase > 255)
                     throw Error("cubeCase returned " + std::to_string(cubeCase) + ", not a case 0..255");
+                const double* corner = &values[8 * cube];
                 for (const std::array<int, 3>& tri : table[std::size_t(cubeCase)]) {
                     std::array<std::uint32_t, 3> out{};
-                    for (int v = 0; v < 3; ++v) {
-                        const int e = tri[std::size_t(v)];
-                        const glm::ivec3 a = glm::ivec3(i, j, k) + cubeCorner(kEdgeCorners[e][0]);
-                        const glm::ivec3 b = glm::ivec3(i, j, k) + cubeCorner(kEdgeCorners[e][1]);
-                        const auto [it, fresh] =
-                            vertexOfEdge.try_emplace(edgeKey(a, e / 4, d), std::uint32_t(mesh.vertices.size()));
+                    for (int n = 0; n < 3; ++n) {
+                        const int e = tri[std::size_t(n)];
+                        const int ca = kEdgeCorners[e][0], cb = kEdgeCorners[e][1];
+                        const glm::ivec3 a = glm::ivec3(i, j, k) + cubeCorner(ca);
+                        const glm::ivec3 b = glm::ivec3(i, j, k) + cubeCorner(cb);
+                        const auto [it, fresh] = vertexOfEdge.try_emplace(
+                            edgeKey(a, e / 4, d), firstNew + std::uint32_t(crossings.size()));
                         if (fresh)  // the edge's lower corner (a) first, always
-                            mesh.vertices.push_back(glm::vec3(stage.edgeCrossing(
-                                centre(a), centre(b), values[kEdgeCorners[e][0]], values[kEdgeCorners[e][1]], isovalue)));
-                        out[std::size_t(v)] = it->second;
+                            crossings.push_back({centre(a), centre(b), corner[ca], corner[cb]});
+                        out[std::size_t(n)] = it->second;
                     }
                     mesh.triangles.push_back(out);
                     if (mesh.triangles.size() > maxTriangles)
@@ -163,6 +180,10 @@ TriangleMesh extractIsosurface(const Volume& volume, double isovalue, std::size_
                                     " triangles");
                 }
             }
+        points.resize(crossings.size());
+        batch.edgeCrossings(crossings.data(), crossings.size(), isovalue, points.data());
+        for (const glm::dvec3& p : points) mesh.vertices.push_back(glm::vec3(p));
+    }
     return mesh;
 }
 

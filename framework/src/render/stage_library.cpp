@@ -2,6 +2,7 @@
 #include "voxlab/stage_library.h"
 
 #include <dlfcn.h>
+#include <sys/stat.h>
 
 #include "voxlab/error.h"
 #include "voxlab/marching_cubes.h"
@@ -38,6 +39,31 @@ void forEachStageFunction(CppStages& t, const CppStages& other, Visit visit) {
 }  // namespace
 
 const CppStages& cppStages() { return table(); }
+
+namespace {
+
+void loopCubeCases(const double* values, std::size_t count, double isovalue, int* cases) {
+    for (std::size_t i = 0; i < count; ++i) cases[i] = table().cubeCase(values + 8 * i, isovalue);
+}
+
+void loopEdgeCrossings(const EdgeCrossingCall* calls, std::size_t count, double isovalue, glm::dvec3* points) {
+    for (std::size_t i = 0; i < count; ++i)
+        points[i] = table().edgeCrossing(calls[i].a, calls[i].b, calls[i].va, calls[i].vb, isovalue);
+}
+
+StageBatches& batches() {
+    static StageBatches b{&loopCubeCases, &loopEdgeCrossings};
+    return b;
+}
+
+}  // namespace
+
+const StageBatches& stageBatches() { return batches(); }
+
+void overrideStageBatches(const StageBatches& offered) {
+    if (offered.cubeCases) batches().cubeCases = offered.cubeCases;
+    if (offered.edgeCrossings) batches().edgeCrossings = offered.edgeCrossings;
+}
 
 bool isStageFunction(const std::string& name) {
     bool found = false;
@@ -78,13 +104,22 @@ std::vector<std::string> overrideStageFunctions(const CppStages& found) {
     return names;
 }
 
+std::string stageExportsObject() {
+#ifdef VOXLAB_STAGE_EXPORTS_OBJECT
+    struct stat st;
+    if (stat(VOXLAB_STAGE_EXPORTS_OBJECT, &st) == 0 && S_ISREG(st.st_mode)) return VOXLAB_STAGE_EXPORTS_OBJECT;
+#endif
+    return "";
+}
+
 std::vector<std::string> stageLibraryBuildCommand(const std::vector<std::string>& sources,
                                                   const std::string& output) {
     std::vector<std::string> cmd = {VOXLAB_CXX_COMPILER, "-std=c++17", "-O1", "-fPIC", "-shared",
                                     "-Wl,-Bsymbolic", "-DGLM_FORCE_CXX17",
                                     "-I" VOXLAB_SOURCE_DIR "/framework/include"};
     cmd.insert(cmd.end(), sources.begin(), sources.end());
-    cmd.push_back(VOXLAB_SOURCE_DIR "/framework/stage_library/stage_exports.cpp");
+    const std::string prebuilt = stageExportsObject();
+    cmd.push_back(prebuilt.empty() ? VOXLAB_SOURCE_DIR "/framework/stage_library/stage_exports.cpp" : prebuilt);
     cmd.push_back("-o");
     cmd.push_back(output);
     return cmd;

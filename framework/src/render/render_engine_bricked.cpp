@@ -56,8 +56,11 @@ bool orderFree(BrickCombine combine) {
 }  // namespace
 
 // Three quarters of what the driver says is free, for the volume leaves
-// room for the targets and tables; a software renderer's textures live in
-// the machine's memory beside the volume itself: a quarter of it.
+// room for the targets and tables. A software renderer's textures are a
+// second copy of the volume in the machine's own memory: at most 256 MiB
+// of them (and at most a quarter of the memory), so that a large volume
+// costs its own size and 256 MiB, drawn in bricks, rather than twice its
+// size. Other drivers that say nothing: 1 GiB.
 std::size_t driverGpuMemoryBudget() {
     GLint kib[4] = {0, 0, 0, 0};
     if (hasExtension("GL_NVX_gpu_memory_info")) {
@@ -71,9 +74,10 @@ std::size_t driverGpuMemoryBudget() {
     const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     const std::string name = renderer ? renderer : "";
     const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-    if ((name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos) && pages > 0 &&
-        page > 0)
-        return std::size_t(pages) * std::size_t(page) / 4;
+    if (name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos) {
+        const std::size_t software = std::size_t(256) << 20;
+        return pages > 0 && page > 0 ? std::min(software, std::size_t(pages) * std::size_t(page) / 4) : software;
+    }
     return std::size_t(1) << 30;
 }
 

@@ -122,12 +122,18 @@ struct InflateTarget {
     }
 
     // Makes room for more output. The memory follows the data that really
-    // arrives (a stream that declares 3 GiB and holds 1 KiB costs 1 MiB), and
-    // the sizes are expected/2^k for k = ..., 2, 1, 0, each about twice the
-    // last, at least 1 MiB: the final growth copies at most expected/2 bytes
-    // into a buffer of exactly `expected`, so the peak is 1.5 x the declared
-    // size (capped by checkedVolumeBytes), never more.
+    // arrives (a stream that declares 3 GiB and holds 1 KiB costs 1 MiB): the
+    // sizes are expected/2^k, each twice the last, at least 1 MiB, until
+    // an eighth of `expected` has arrived; then the buffer grows once to
+    // exactly `expected`. That last growth copies an eighth, so loading
+    // peaks at 1.125 x the declared size (capped by checkedVolumeBytes), and
+    // the buffer is never more than 8 x the data that has arrived.
     void grow() {
+        if (out.size() * 8 >= expected) {
+            out.reserve(static_cast<std::size_t>(expected));
+            out.resize(static_cast<std::size_t>(expected));
+            return;
+        }
         const std::uint64_t wanted = std::max<std::uint64_t>(2 * out.size(), 1 << 20);
         std::uint64_t size = expected;
         while (size / 2 >= wanted) size /= 2;

@@ -84,8 +84,8 @@ std::string fileExtension(const std::string& path);
 // got M", "gzip data is too long: more than N bytes". Concatenated gzip
 // members are accepted; bytes after the end of the stream once `expected`
 // bytes are out are ignored. The output buffer grows with the data that
-// arrives, never past `expected` (peak 1.5x, while the last growth copies),
-// and inflation stops at the first byte beyond it.
+// arrives, never past `expected` (peak 1.125x, while the last growth
+// copies), and inflation stops at the first byte beyond it.
 std::vector<std::uint8_t> inflateGzipFile(const std::string& errorPath, const std::string& dataPath,
                                           std::uint64_t offset, std::uint64_t skip,
                                           std::uint64_t expected);

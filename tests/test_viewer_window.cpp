@@ -398,5 +398,38 @@ TEST_F(ViewerWindow, AClipPlaneHandleDragsThePlaneAlongItsNormal) {
     EXPECT_NE(bad.err.find("the scene has 1 clip planes"), std::string::npos) << bad.err;
 }
 
+// Levels of detail: bonsai (256^3) moves at its 128^3 level (the mean of
+// each 2x2x2 block), at up to the window's size and twice the step,
+// and the full level comes back once the mouse rests; tooth (1.6 million
+// voxels) is small enough to move at full level, reduced as before. The
+// coarse image is the same picture: near the full image, not blank.
+TEST_F(ViewerWindow, MovingDrawsTheCoarseLevelAndRestDrawsTheVolume) {
+    const CommandResult r = play("load bonsai.nrrd\n"
+                                 "renderer mip\n"
+                                 "panel controls off\n"
+                                 "panel tf off\n"
+                                 "wait 2\n"
+                                 "screenshot " + path("before.png") + "\n"
+                                 "drag 2 0 4\n"
+                                 "screenshot " + path("after.png") + "\n"
+                                 "load tooth.nrrd\n"
+                                 "drag 2 0 3\n"
+                                 "quit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    const std::size_t bonsai = r.out.find("drag: ");
+    ASSERT_NE(bonsai, std::string::npos) << r.out;
+    const std::string first = r.out.substr(bonsai, r.out.find('\n', bonsai) - bonsai);
+    EXPECT_NE(first.find(", level 1, step 1:"), std::string::npos) << first;
+    EXPECT_NE(first.find("idle, full quality 640x400"), std::string::npos) << first;
+    const std::size_t tooth = r.out.find("drag: ", bonsai + 1);
+    ASSERT_NE(tooth, std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("level", tooth), std::string::npos) << r.out.substr(tooth);
+    // The view turned 8 pixels' worth: the settled image is the bonsai, a
+    // little turned, not the coarse one left behind.
+    const Image before = loadPng(path("before.png")), after = loadPng(path("after.png"));
+    EXPECT_GT(stats(after, {220, 100, 420, 300}).mean, 0.05) << "no volume after the drag";
+    EXPECT_LT(meanDifference(before, after, {0, 0, 640, 400}), 0.05);
+}
+
 }  // namespace
 }  // namespace voxlab::testing

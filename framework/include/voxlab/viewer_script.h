@@ -24,6 +24,7 @@
 //   window LO HI                   grey window in data units, HI > LO
 //   skipping on|off                empty-space skipping (the scene's sampling.skip_empty_space)
 //   samples on|off                 the samples view: pixels coloured by the samples their rays take
+//   lod on|off                     while the view moves, draw the coarse level (volume_pyramid.h)
 //   split on|off|difference        student | reference side by side, or the heat map
 //   divider X                      the split's divider at X (0..1) of the window's width
 //   right RENDERER|same            the right side's technique (default: the same as the left)

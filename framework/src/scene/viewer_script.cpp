@@ -166,7 +166,7 @@ public:
             if (!(numberAt(1, msg) > numberAt(0, msg))) fail(msg);
             return;
         }
-        if (c == "samples" || c == "skipping") return oneWord("expected on or off", {"on", "off"});
+        if (c == "samples" || c == "skipping" || c == "lod") return oneWord("expected on or off", {"on", "off"});
         if (c == "split") return oneWord("expected on, off or difference", {"on", "off", "difference"});
         if (c == "panel") {
             const char* msg = "expected a panel (slices, tf, tf2d, profile, help or controls) and on or off";
@@ -250,7 +250,7 @@ private:
 
 constexpr const char* kCommands[] = {
     "load", "scene", "renderer", "param", "step", "interpolation", "tf", "tf2d", "camera", "rotate",
-    "key", "ui-scale", "slide", "enlarge", "window", "samples", "skipping", "split", "divider", "right", "drag", "drag-plane", "implementation", "panel", "click", "size", "wait", "screenshot", "quit"};
+    "key", "ui-scale", "slide", "enlarge", "window", "samples", "skipping", "lod", "split", "divider", "right", "drag", "drag-plane", "implementation", "panel", "click", "size", "wait", "screenshot", "quit"};
 
 }  // namespace
 

@@ -107,11 +107,7 @@ void handleKeys(State& s) {
     for (int k = 0; k < 9 && k < int(all.size()); ++k)
         if (pressed(GLFW_KEY_1 + k))
             s.scene.renderer = all[k]->id(), s.scene.parameters.clear(), s.dirty = true;
-    if (pressed(GLFW_KEY_R)) {
-        s.main.engine->reloadShaders();
-        if (s.other.engine) s.other.engine->reloadShaders();
-        s.dirty = true;
-    }
+    if (pressed(GLFW_KEY_R)) reloadShaders(s);
     if (pressed(GLFW_KEY_S)) s.split = SplitMode((int(s.split) + 1) % 3), s.dirty = true;
     if (pressed(GLFW_KEY_I) && !s.hasReference) s.say("a student release has no reference: split view (S) compares "
                                                       "a grading scene with its expected image", 3.0);
@@ -222,8 +218,7 @@ void drawFrame(State& s, GLFWwindow* window) {
 
 // GL objects go while the context still exists, then ImGui.
 void shutDown(State& s) {
-    s.main.engine.reset();
-    s.other.engine.reset();
+    for (Side* side : {&s.main, &s.other}) side->engine.reset(), side->coarse.reset();
     s.sliceViewer.reset();
     s.presenter.reset();
     releaseTransferFunctionEditorTextures();
@@ -246,6 +241,7 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
     GlfwWindow window(options.width, options.height, "voxlab");
     setImplementation(s.main, options.implementationRoot, *volume);
     s.volume = std::move(volume);
+    resetCoarseLevel(s);
     s.slices = initialSliceCursor(*s.volume);
     s.tfPath = presetOf(s.scene, *s.volume);
 

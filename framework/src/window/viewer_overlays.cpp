@@ -65,7 +65,12 @@ void statusLine(const State& s, ImDrawList* fg, ImVec2 size, float scale) {
     else if (s.showSamples)
         std::snprintf(samples, sizeof samples, "  samples: ray casters without a cutting plane only");
     char quality[96] = "";
-    if (s.interactive && s.refineStep == 0) std::snprintf(quality, sizeof quality, "  moving: reduced size, double step");
+    if (s.coarseShown && s.coarseVolume) {
+        const glm::ivec3 d = s.coarseVolume->dims();
+        std::snprintf(quality, sizeof quality, "  moving: level %d of the pyramid (%dx%dx%d)", s.coarseLevel, d.x, d.y,
+                      d.z);
+    } else if (s.interactive && s.refineStep == 0)
+        std::snprintf(quality, sizeof quality, "  moving: reduced size, double step");
     else if (s.interactive) std::snprintf(quality, sizeof quality, "  refining %d/%d", s.refineStep, s.refineSteps);
     char line[320];
     std::snprintf(line, sizeof line, "%s  render %.1f ms (%.1f frames/s)  %dx%d%s%s", s.scene.renderer.c_str(),

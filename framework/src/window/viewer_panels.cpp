@@ -141,6 +141,14 @@ void techniquePanel(State& s) {
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Colour each pixel by the samples its ray takes (black: none; yellow: a ray\n"
                           "along the box's diagonal with no skipping). Ray casters without a cutting plane.");
+    if (s.coarseLevel > 0) {
+        ImGui::Checkbox("coarse level while moving", &s.coarseWhileMoving);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("While the view moves, draw the volume's level %d (each level halves every side,\n"
+                              "a mean of 2x2x2 voxels) at up to the window's size; off: the volume itself\n"
+                              "at a reduced size and twice the step.",
+                              s.coarseLevel);
+    }
     glm::dvec2 w = s.scene.window.value_or(volume.valueRange());
     float lo = float(w.x), hi = float(w.y);
     const float speed = float((volume.maxValue() - volume.minValue()) / 500.0 + 1e-6);
@@ -181,11 +189,7 @@ void techniquePanel(State& s) {
     ImGui::Checkbox("slices", &s.showSlices);
     ImGui::SameLine();
     ImGui::Checkbox("ray profile", &s.showProfile);
-    if (ImGui::Button("reload shaders (R)")) {
-        s.main.engine->reloadShaders();
-        if (s.other.engine) s.other.engine->reloadShaders();
-        s.dirty = true;
-    }
+    if (ImGui::Button("reload shaders (R)")) reloadShaders(s);
     ImGui::SameLine();
     if (ImGui::Button("screenshot (P)")) s.screenshotRequest = timestampedScreenshotName();
     ImGui::SameLine();

@@ -2,8 +2,12 @@
 // putting the images on the screen.
 //
 // While the mouse drags (and for a moment after the wheel turns) the
-// renderers run at a fraction of the window's resolution and twice the step,
-// which keeps the frame rate up on a software rasteriser. Once input stops,
+// renderers draw a coarser level of the volume (volume_pyramid.h: each
+// level halves every side, a mean of 2x2x2 voxels) at up to the window's
+// resolution, or, for a volume too small to need one or a scene whose parts
+// are tied to the full grid (a region of interest, a cutting plane, a label
+// map), the volume itself at a fraction of the resolution and twice the
+// step: either keeps the frame rate up on a software rasteriser. Once input stops,
 // the image is refined progressively: each frame renders twice the last
 // resolution at the full step, until the window's resolution arrives. A
 // projector never shows the blurred image for long, and the UI still answers
@@ -20,6 +24,7 @@
 #include "voxlab/error.h"
 #include "voxlab/ray_profile.h"
 #include "voxlab/shader.h"
+#include "voxlab/volume_pyramid.h"
 
 namespace voxlab::viewer {
 
@@ -27,13 +32,17 @@ namespace {
 
 constexpr auto kSettle = std::chrono::milliseconds(250);  // idle time before full quality
 constexpr double kInteractiveMs = 90.0;                    // render budget while the mouse is busy
+// The coarse level's size: at most about this many voxels (bonsai's 256^3
+// moves at 128^3, a 1024^3 volume at 128^3).
+constexpr double kCoarseVoxels = double(1 << 22);
 
 bool isSceneFile(const std::string& path) {
     return path.size() > 5 && path.substr(path.size() - 5) == ".json";
 }
 
 // The scene one side renders: the shared scene with that side's renderer.
-Scene sideScene(const State& s, const Side& side, int width, int height, bool reduced) {
+// `doubleStep`: twice the step (a reduced image of the full level).
+Scene sideScene(const State& s, const Side& side, int width, int height, bool doubleStep) {
     Scene scene = s.scene;
     if (!side.renderer.empty() && side.renderer != scene.renderer) {
         scene.renderer = side.renderer;
@@ -41,17 +50,39 @@ Scene sideScene(const State& s, const Side& side, int width, int height, bool re
     }
     scene.width = width;
     scene.height = height;
-    if (reduced) scene.step = std::min(kMaxStep, scene.step * 2.0);
+    if (doubleStep) scene.step = std::min(kMaxStep, scene.step * 2.0);
     return scene;
+}
+
+// Whether the scene can be drawn from the coarse level: its parts given in
+// the full grid's voxels (a region of interest, a cutting plane's point, a
+// label map, a second volume's resampling) would not line up.
+bool coarseDrawable(const State& s) {
+    return s.coarseWhileMoving && s.coarseLevel > 0 && !s.scene.roi && !s.scene.cuttingPlane && !s.scene.labels && !s.scene.fusion;
+}
+
+// The coarse level and each side's engine for it, made on first use.
+void prepareCoarse(State& s) {
+    if (!s.coarseVolume) {
+        Volume level = halveVolume(*s.volume);
+        for (int l = 1; l < s.coarseLevel; ++l) level = halveVolume(level);
+        s.coarseVolume = std::make_unique<Volume>(std::move(level));
+    }
+    for (Side* side : {&s.main, &s.other})
+        if (side->engine && !side->coarse) {
+            side->coarse = std::make_unique<RenderEngine>(side->engine->implementationRoot());
+            side->coarse->setVolume(*s.coarseVolume);
+        }
 }
 
 // Renders one side, or counts its samples in the samples view. Returns
 // the samples counted (0 when rendering normally).
-double renderSide(Side& side, const Scene& scene, bool countSamples) {
+double renderSide(Side& side, const Scene& scene, bool countSamples, bool coarse) {
+    RenderEngine& engine = coarse ? *side.coarse : *side.engine;
     try {
         double taken = 0.0;
-        if (countSamples) taken = side.engine->countSamples(scene);
-        else side.engine->renderOffscreen(scene);
+        if (countSamples) taken = engine.countSamples(scene);
+        else engine.renderOffscreen(scene);
         side.error.clear();
         return taken;
     } catch (const Error& e) {
@@ -66,8 +97,28 @@ void setImplementation(Side& side, const std::string& root, const Volume& volume
     auto engine = std::make_unique<RenderEngine>(root);  // throws for a folder that does not exist
     engine->setVolume(volume);
     side.engine = std::move(engine);
+    side.coarse.reset();  // made again, with this implementation, on the next drag
     side.implementation = root;
     side.error.clear();
+}
+
+void resetCoarseLevel(State& s) {
+    s.coarseLevel = coarseLevelFor(s.volume->dims(), kCoarseVoxels);
+    s.coarseVolume.reset();
+    s.main.coarse.reset(), s.other.coarse.reset();
+    s.coarseShown = false;
+}
+
+void reloadShaders(State& s) {
+    for (Side* side : {&s.main, &s.other}) {
+        if (side->engine) side->engine->reloadShaders();
+        if (side->coarse) side->coarse->reloadShaders();
+    }
+    s.dirty = true;
+}
+
+const RenderEngine& shownEngine(const State& s, const Side& side) {
+    return s.coarseShown && side.coarse ? *side.coarse : *side.engine;
 }
 
 void loadDataset(State& s, const std::string& path) {
@@ -91,6 +142,7 @@ void setScene(State& s, const Scene& scene, const std::string& scenePath) {
         s.main.engine->setVolume(*volume);
         if (s.other.engine) s.other.engine->setVolume(*volume);
         s.volume = std::move(volume);
+        resetCoarseLevel(s);
         s.histogram.reset();
         s.histogram2D.reset();
         s.slices = initialSliceCursor(*s.volume);
@@ -119,20 +171,27 @@ std::string presetOf(const Scene& scene, const Volume& volume) {
     return "";
 }
 
+// Hold about 10 frames/s while the mouse is busy: shrink the moving image
+// when it renders too slowly, grow it back when there is room (the full
+// level: from half to an eighth of the window's size on each side; the
+// coarse level: from the whole window down to an eighth).
+static void adaptReduction(State& s, bool coarse) {
+    double& r = coarse ? s.coarseReduction : s.reduction;
+    const double largest = coarse ? 1.0 : 2.0;
+    if (s.renderMs > kInteractiveMs) r = std::min(8.0, r * std::sqrt(s.renderMs / kInteractiveMs));
+    else if (s.renderMs < 0.5 * kInteractiveMs) r = std::max(largest, r / 1.2);
+}
+
 void renderFrame(State& s) {
     // A side whose program has never compiled has no files to watch yet:
     // try it again every second, so that saving the fix shows the image.
     if (Clock::now() - s.lastRetry > std::chrono::seconds(1)) {
         s.lastRetry = Clock::now();
-        for (Side* side : {&s.main, &s.other})
-            if (side->engine && !side->error.empty()) side->engine->reloadShaders(), s.dirty = true;
+        for (const Side* side : {&s.main, &s.other})
+            if (side->engine && !side->error.empty()) reloadShaders(s);
     }
     // Live reload: a saved shader file recompiles at once.
-    if (s.main.engine && s.watcher.changed(s.main.engine->shaderSources())) {
-        s.main.engine->reloadShaders();
-        if (s.other.engine) s.other.engine->reloadShaders();
-        s.dirty = true;
-    }
+    if (s.main.engine && s.watcher.changed(s.main.engine->shaderSources())) reloadShaders(s);
     const bool busy = s.dragging || s.panning || Clock::now() - s.lastInput < kSettle;
     // Nothing new to show: unless the last images are reduced and the
     // mouse has settled, keep them.
@@ -143,7 +202,7 @@ void renderFrame(State& s) {
         updateExpected(s);
         const auto t0 = Clock::now();
         s.samplesShown = false;
-        if (s.expected.available) renderSide(s.main, s.expected.scene, false);
+        if (s.expected.available) renderSide(s.main, s.expected.scene, false, false);
         glFinish();
         s.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
         s.imageWidth = s.expected.width, s.imageHeight = s.expected.height;
@@ -151,13 +210,15 @@ void renderFrame(State& s) {
         s.dirty = false;
         return;
     }
-    // While the mouse is busy: the reduced size and twice the step. Once it
-    // rests: twice the last resolution each frame, full step, up to full size.
+    // While the mouse is busy: the coarse level (or the reduced size and
+    // twice the step). Once it rests: the full level at twice the last
+    // resolution each frame, full step, up to full size.
     const bool dragging = busy && s.dirty;
+    const bool coarse = dragging && coarseDrawable(s);
     double reduction = 1.0;
     if (dragging) {
-        reduction = s.reduction;
-        s.refineSteps = int(std::ceil(std::log2(reduction) - 1e-9));
+        reduction = coarse ? s.coarseReduction : s.reduction;
+        s.refineSteps = std::max(int(std::ceil(std::log2(reduction) - 1e-9)), coarse ? 1 : 0);
         s.refineStep = 0;
     } else if (!s.dirty && s.interactive) {
         reduction = std::max(1.0, s.shownReduction * 0.5);
@@ -166,38 +227,33 @@ void renderFrame(State& s) {
     const bool reduced = reduction > 1.0;
     const int w = reduced ? std::max(1, int(s.fbWidth / reduction)) : s.fbWidth;
     const int h = reduced ? std::max(1, int(s.fbHeight / reduction)) : s.fbHeight;
+    if (s.split != SplitMode::Off && !s.other.engine) setImplementation(s.other, "", *s.volume);
+    if (coarse) prepareCoarse(s);
+    const Volume& shown = coarse ? *s.coarseVolume : *s.volume;
     const auto t0 = Clock::now();
     const Scene mainScene = sideScene(s, s.main, w, h, dragging);
     Scene otherScene;
     if (s.split != SplitMode::Off) otherScene = sideScene(s, s.other, w, h, dragging);
     s.samplesShown =
         s.showSamples && samplesCountable(mainScene) && (s.split == SplitMode::Off || samplesCountable(otherScene));
-    s.samplesTaken = renderSide(s.main, mainScene, s.samplesShown);
-    if (s.split != SplitMode::Off) {
-        if (!s.other.engine) setImplementation(s.other, "", *s.volume);
-        renderSide(s.other, otherScene, s.samplesShown);
-    }
+    s.samplesTaken = renderSide(s.main, mainScene, s.samplesShown, coarse);
+    if (s.split != SplitMode::Off) renderSide(s.other, otherScene, s.samplesShown, coarse);
     glFinish();
     s.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     if (s.samplesShown) {
         // The scale: the samples along the box's diagonal at this frame's step.
-        const double most = glm::length(s.volume->extent()) / (mainScene.step * s.volume->minSpacing());
+        const double most = glm::length(shown.extent()) / (mainScene.step * shown.minSpacing());
         s.countScale = float(1.0 / std::max(most, 1.0));
-        s.samplesFull = samplesByRule(*s.volume, mainScene);
+        s.samplesFull = samplesByRule(shown, mainScene);
     }
     s.imageWidth = w, s.imageHeight = h;
-    // Hold about 10 frames/s while the mouse is busy: shrink the reduced
-    // image when it renders too slowly, grow it back when there is room
-    // (from half to an eighth of the window's size on each side).
-    if (dragging) {
-        if (s.renderMs > kInteractiveMs) s.reduction = std::min(8.0, s.reduction * std::sqrt(s.renderMs / kInteractiveMs));
-        else if (s.renderMs < 0.5 * kInteractiveMs) s.reduction = std::max(2.0, s.reduction / 1.2);
-    }
-    s.interactive = reduced;
+    if (dragging) adaptReduction(s, coarse);
+    s.coarseShown = coarse;
+    s.interactive = reduced || coarse;
     s.shownReduction = reduction;
-    if (!reduced) s.refineStep = s.refineSteps = 0;
+    if (!s.interactive) s.refineStep = s.refineSteps = 0;
     s.dirty = false;
-    if (!reduced) updateStubNotice(s);
+    if (!s.interactive) updateStubNotice(s);
 }
 
 void presentFrame(State& s) {
@@ -212,14 +268,15 @@ void presentFrame(State& s) {
     glDisable(GL_BLEND);
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
-    if (!s.main.engine || !s.main.engine->offscreenTexture()) return;
+    if (!s.main.engine || !shownEngine(s, s.main).offscreenTexture()) return;
     const bool expected = comparesWithExpected(s);
     if (expected && !s.expected.available) return;  // the overlay says why
-    const bool split = expected || (s.split != SplitMode::Off && s.other.engine && s.other.engine->offscreenTexture());
-    const unsigned textures[2] = {s.main.engine->offscreenTexture(),
-                                  expected ? s.expected.texture
-                                  : split  ? s.other.engine->offscreenTexture()
-                                           : s.main.engine->offscreenTexture()};
+    const bool split =
+        expected || (s.split != SplitMode::Off && s.other.engine && shownEngine(s, s.other).offscreenTexture());
+    const unsigned mainTexture = shownEngine(s, s.main).offscreenTexture();
+    const unsigned textures[2] = {mainTexture, expected ? s.expected.texture
+                                               : split  ? shownEngine(s, s.other).offscreenTexture()
+                                                        : mainTexture};
     for (int i = 0; i < 2; ++i) {
         glActiveTexture(GL_TEXTURE0 + i);
         glBindTexture(GL_TEXTURE_2D, textures[i]);

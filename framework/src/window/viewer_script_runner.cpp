@@ -62,6 +62,8 @@ bool sceneStep(State& s, const ViewerStep& st) {
         s.scene.window = glm::dvec2(number(st, 0), number(st, 1));
     } else if (c == "skipping") {
         s.scene.skipEmptySpace = onOff(st, 0);
+    } else if (c == "lod") {
+        s.coarseWhileMoving = onOff(st, 0);
     } else {
         return false;
     }
@@ -184,6 +186,7 @@ ScriptRunner::Progress ScriptRunner::drag(State& s) {
         char size[64];
         std::snprintf(size, sizeof size, "%dx%d", s.imageWidth, s.imageHeight);
         if (s.interactive) dragSize_ = size;
+        if (s.interactive) dragLevel_ = s.coarseShown && s.coarseVolume ? "level " + std::to_string(s.coarseLevel) : "";
         orbitCamera(&s.scene.camera, s.volume->extent(), dragDx_, dragDy_, s.fbWidth, s.fbHeight);
         s.lastInput = Clock::now();
         s.dirty = true;
@@ -197,9 +200,12 @@ ScriptRunner::Progress ScriptRunner::drag(State& s) {
     std::vector<double> t = dragTimes_;
     std::sort(t.begin(), t.end());
     const double median = t.empty() ? 0.0 : t[t.size() / 2];
-    std::printf("drag: %zu frames, the last at %s, step %g: median render %.1f ms (%.1f frames/s); "
+    char moving[64];
+    if (dragLevel_.empty()) std::snprintf(moving, sizeof moving, "step %g", std::min(kMaxStep, s.scene.step * 2.0));
+    else std::snprintf(moving, sizeof moving, "%s, step %g", dragLevel_.c_str(), std::min(kMaxStep, s.scene.step * 2.0));
+    std::printf("drag: %zu frames, the last at %s, %s: median render %.1f ms (%.1f frames/s); "
                 "idle, full quality %dx%d, step %g: %.1f ms, after %d refinement step%s\n",
-                t.size(), dragSize_.c_str(), std::min(kMaxStep, s.scene.step * 2.0), median,
+                t.size(), dragSize_.c_str(), moving, median,
                 median > 0 ? 1000.0 / median : 0.0, s.imageWidth, s.imageHeight, s.scene.step, s.renderMs,
                 refinements_ + 1, refinements_ == 0 ? "" : "s");
     std::fflush(stdout);

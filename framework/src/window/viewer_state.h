@@ -50,6 +50,9 @@ struct Side {
     std::string implementation;  // a folder; empty: the reference
     std::string renderer;        // empty: the scene's
     std::unique_ptr<RenderEngine> engine;
+    // The same implementation drawing the volume's coarse level while the
+    // view moves (volume_pyramid.h); made on the first drag.
+    std::unique_ptr<RenderEngine> coarse;
     std::string error;           // this side's last render error
 };
 
@@ -81,10 +84,18 @@ struct State {
     bool dirty = true;              // the scene changed: render again
     bool interactive = false;       // the last images are reduced (mouse busy, or still refining)
     double reduction = 2.0;         // while busy: the image is the window's size divided by this
+    double coarseReduction = 1.0;   // the same for the coarse level (below)
     // Progressive refinement: once the mouse rests, the reduced image is
     // rendered again at twice its resolution, frame by frame, up to the
     // window's; the UI answers between the steps.
     double shownReduction = 1.0;    // the last images' reduction (1: full quality)
+    // Levels of detail: while the view moves, the volume's level
+    // `coarseLevel` (each level halves every side; 0: the volume itself, too
+    // small to need one) is drawn instead, at up to the window's size.
+    int coarseLevel = 0;
+    std::unique_ptr<Volume> coarseVolume;  // made on the first drag
+    bool coarseShown = false;              // the last images are of the coarse level
+    bool coarseWhileMoving = true;         // the panel's switch (script: lod on|off)
     int refineStep = 0, refineSteps = 0;  // the step the last images were (0 while dragging)
     Clock::time_point lastInput{};
     Clock::time_point lastRetry{};  // a side whose shader never compiled is retried every second
@@ -162,6 +173,13 @@ void setScene(State& s, const Scene& scene, const std::string& scenePath);  // t
 // The transfer-function preset (datasets/tf/) equal to the scene's, or "".
 std::string presetOf(const Scene& scene, const Volume& volume);
 void setImplementation(Side& side, const std::string& root, const Volume& volume);
+// After s.volume changed: its coarse level is chosen (and made on the
+// next drag).
+void resetCoarseLevel(State& s);
+// Compiles both sides' shaders again (the R key, the panel's button).
+void reloadShaders(State& s);
+// The engine whose image the side shows now (the coarse one while moving).
+const RenderEngine& shownEngine(const State& s, const Side& side);
 void renderFrame(State& s);          // renders what is dirty, at the right quality
 void presentFrame(State& s);         // draws the images into the window
 void saveWindowScreenshot(int width, int height, const std::string& path);

@@ -22,6 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/bonsai_scene.h"
 #include "support/gl_fixture.h"
 #include "voxlab/camera.h"
 #include "voxlab/error.h"
@@ -143,12 +144,6 @@ TEST(BrickOrder, EveryRayMeetsTheBricksInTheOrdersOrder) {
     }
 }
 
-// What the grader compares: the image rounded to 8 bits, as saved.
-Image asPng(Image image) {
-    for (float& v : image.rgba) v = float(toByte(v)) / 255.0f;
-    return image;
-}
-
 struct BrickCase {
     const char* name;
     const char* renderer;
@@ -168,17 +163,8 @@ TEST_P(BrickedKeepsTheImage, OnBonsai) {
     static const Volume bonsai = loadVolume(datasetPath("bonsai.nrrd"));
     const BrickCase& c = GetParam();
     engine().setVolume(bonsai);
-    Scene scene;
-    scene.renderer = c.renderer;
-    scene.camera.azimuth = 35.0;
-    scene.camera.elevation = 25.0;
-    scene.camera.projection = c.projection;
-    scene.width = scene.height = 96;
-    scene.step = 0.5;
-    scene.interpolation = c.interpolation;
-    for (const auto& [name, value] : c.parameters) scene.parameters[name] = value;
-    if (c.transferFunction) scene.transferFunction = TransferFunction::load(datasetPath("tf/bonsai.json"));
-    if (c.transferFunction2D) scene.transferFunction2D = TransferFunction2D::load(datasetPath("tf2d/bonsai.json"));
+    Scene scene = bonsaiScene({c.renderer, c.parameters, c.interpolation, c.transferFunction, c.transferFunction2D,
+                               c.projection});
     for (bool skipping : {false, true}) {
         scene.skipEmptySpace = skipping;
         scene.gpuMemoryMiB.reset();
@@ -270,16 +256,21 @@ TEST_F(LongVolume, MipAndFirstHitAgreeWithTheVoxelsBeyondTheTextureLimit) {
     ASSERT_TRUE(engine().brickLayout().bricked());
     EXPECT_GE(engine().brickLayout().count.x, 2);
     const Camera cam = Camera::make(scene.camera, v.extent(), scene.width, scene.height);
+    // The voxel column under pixel (x, y), where its ray crosses the box's
+    // middle plane y = 64; -1 off the box or on a voxel face (either column).
+    auto column = [&](int x, int y) {
+        glm::dvec3 o, d;
+        cam.ray(x + 0.5, y + 0.5, &o, &d);
+        const glm::dvec3 p = o + (64.0 - o.y) / d.y * d;
+        if (p.x < 0.5 || p.x > dims.x - 0.5 || p.z < 0.5 || p.z > dims.z - 0.5) return -1;
+        if (std::abs(p.x - std::round(p.x)) < 0.05) return -1;
+        return int(std::floor(p.x));
+    };
     int compared = 0, band = 0;
     for (int y = 0; y < scene.height; ++y)
         for (int x = 0; x < scene.width; ++x) {
-            glm::dvec3 o, d;
-            cam.ray(x + 0.5, y + 0.5, &o, &d);
-            // Where the ray crosses the box's middle plane y = 64.
-            const glm::dvec3 p = o + (64.0 - o.y) / d.y * d;
-            if (p.x < 0.5 || p.x > dims.x - 0.5 || p.z < 0.5 || p.z > dims.z - 0.5) continue;
-            if (std::abs(p.x - std::round(p.x)) < 0.05) continue;  // on a voxel face: either column
-            const int expected = f(int(std::floor(p.x)));
+            if (column(x, y) < 0) continue;
+            const int expected = f(column(x, y));
             ASSERT_LE(std::abs(mip[std::size_t(y) * scene.width + x] - expected), 1) << "pixel " << x << "," << y;
             ++compared;
             band += expected == 250;
@@ -291,12 +282,8 @@ TEST_F(LongVolume, MipAndFirstHitAgreeWithTheVoxelsBeyondTheTextureLimit) {
     const std::vector<int> hit = renderGrey(v, scene);
     for (int y = 0; y < scene.height; ++y)
         for (int x = 0; x < scene.width; ++x) {
-            glm::dvec3 o, d;
-            cam.ray(x + 0.5, y + 0.5, &o, &d);
-            const glm::dvec3 p = o + (64.0 - o.y) / d.y * d;
-            if (p.x < 0.5 || p.x > dims.x - 0.5 || p.z < 0.5 || p.z > dims.z - 0.5) continue;
-            if (std::abs(p.x - std::round(p.x)) < 0.05) continue;
-            const int value = f(int(std::floor(p.x)));
+            if (column(x, y) < 0) continue;
+            const int value = f(column(x, y));
             ASSERT_LE(std::abs(hit[std::size_t(y) * scene.width + x] - (value >= 200 ? value : 0)), 1)
                 << "pixel " << x << "," << y;
         }

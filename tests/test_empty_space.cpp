@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/cpu_sampling.h"
+#include "support/bonsai_scene.h"
 #include "support/gl_fixture.h"
 #include "voxlab/camera.h"
 #include "voxlab/empty_space.h"
@@ -395,29 +396,13 @@ struct SkipCase {
     bool expectFewerSamples = true;
 };
 
-// What the grader compares: the image rounded to 8 bits, as saved.
-Image asPng(Image image) {
-    for (float& v : image.rgba) v = float(toByte(v)) / 255.0f;
-    return image;
-}
-
 class SkippingKeepsTheImage : public GlTest, public ::testing::WithParamInterface<SkipCase> {};
 
 TEST_P(SkippingKeepsTheImage, OnBonsai) {
     static const Volume bonsai = loadVolume(datasetPath("bonsai.nrrd"));
     const SkipCase& c = GetParam();
     engine().setVolume(bonsai);
-    Scene scene;
-    scene.renderer = c.renderer;
-    scene.camera.azimuth = 35.0;
-    scene.camera.elevation = 25.0;
-    scene.camera.projection = Projection::Perspective;
-    scene.width = scene.height = 96;
-    scene.step = 0.5;
-    scene.interpolation = c.interpolation;
-    for (const auto& [name, value] : c.parameters) scene.parameters[name] = value;
-    if (c.transferFunction) scene.transferFunction = TransferFunction::load(datasetPath("tf/bonsai.json"));
-    if (c.transferFunction2D) scene.transferFunction2D = TransferFunction2D::load(datasetPath("tf2d/bonsai.json"));
+    Scene scene = bonsaiScene({c.renderer, c.parameters, c.interpolation, c.transferFunction, c.transferFunction2D});
     if (c.cut) {
         CuttingPlane cut;
         cut.normal = glm::dvec3(1.0, 0.2, 0.0);

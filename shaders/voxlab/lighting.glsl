@@ -34,16 +34,22 @@ vec3 light_direction() {
     return normalize(towards);
 }
 
-// The colour of a sample at p seen along `ray`, lit when shading is on.
-vec3 shade_sample(vec3 colour, vec3 p, Ray ray) {
+// The colour of a sample with gradient g seen along `ray`, lit when shading
+// is on (the tf2d renderer has g at hand: it classifies by its length).
+vec3 shade_sample_with_gradient(vec3 colour, vec3 g, Ray ray) {
     if (u_shading == 0) return colour;
-    vec3 g = gradient_at(p);
     float g_len = length(g);
     if (g_len <= u_min_gradient * (u_value_range.y - u_value_range.x) || g_len == 0.0) return colour;
     vec3 view = -ray.direction;
     vec3 normal = -g / g_len;
     if (dot(normal, view) < 0.0) normal = -normal;
     return phong(colour, normal, light_direction(), view);
+}
+
+// The colour of a sample at p seen along `ray`, lit when shading is on.
+vec3 shade_sample(vec3 colour, vec3 p, Ray ray) {
+    if (u_shading == 0) return colour;
+    return shade_sample_with_gradient(colour, gradient_at(p), ray);
 }
 
 #endif

@@ -48,6 +48,26 @@ struct PreprocessedShader {
 // program per combination.
 using ShaderConstants = std::map<std::string, int>;
 
+// Shaders are written once, in GLSL 330 core (their first line says so). The
+// preprocessor gives each context the dialect it compiles:
+//   - Core330: the text as written (OpenGL 3.3 core and newer, macOS's 4.1);
+//   - Es300: GLSL ES 3.00, for WebGL 2 (the browser build). The version line
+//     becomes `#version 300 es` followed by precision statements (highp for
+//     float, int and every sampler type), nothing else changes.
+// What a shader must therefore keep to, to be valid in both (docs/web.md;
+// checked for every bundled shader by tests/test_glsl_es.cpp):
+//   - no implicit conversions: 1.0 not 1 where a float is meant, float(i)
+//     for an int, uint literals with their u;
+//   - no features outside ES 3.00: no noperspective, no gl_ClipDistance,
+//     no double, no texture functions with an explicit bias on a sampler3D's
+//     integer variant; every fragment output with a layout(location = N)
+//     when there is more than one.
+enum class GlslDialect { Core330, Es300 };
+GlslDialect nativeGlslDialect();  // Es300 in the browser build, else Core330
+// The lines that replace an entry shader's first line, `#version 330 core`,
+// in `dialect`; throws ShaderError naming `where` for any other first line.
+std::string versionPreamble(const std::string& firstLine, GlslDialect dialect, const std::string& where);
+
 class ShaderLibrary {
 public:
     explicit ShaderLibrary(std::vector<std::string> searchPath);
@@ -68,6 +88,8 @@ public:
     // or when the file found lies outside its folder through a link.
     std::string resolve(const std::string& name, const std::string& includedFrom = "") const;
     PreprocessedShader preprocess(const std::string& name, const ShaderConstants& constants = {}) const;
+    GlslDialect dialect() const { return dialect_; }
+    void setDialect(GlslDialect dialect) { dialect_ = dialect; }
 
     // The text of a generated shader, by the path resolve() gave it.
     const std::string* generatedText(const std::string& path) const;
@@ -75,6 +97,7 @@ public:
 private:
     std::vector<std::string> searchPath_;
     std::map<std::string, std::string> generated_;  // "generated:NAME" -> text
+    GlslDialect dialect_ = nativeGlslDialect();
 };
 
 class ShaderProgram {

@@ -27,4 +27,14 @@ struct ViewerOptions {
 // Opens the window on `scene` and runs until it is closed. Returns the exit code.
 int runViewer(const Scene& scene, const ViewerOptions& options);
 
+// The same viewer a frame at a time, for a loop that is not ours (the
+// browser's: web/main_web.cpp). startViewer opens the window and loads the
+// scene (throws voxlab::Error on failure); stepViewer draws one frame and
+// returns false when the viewer is done; finishViewer releases everything and
+// returns the exit code.
+struct ViewerSession;
+ViewerSession* startViewer(const Scene& scene, const ViewerOptions& options);
+bool stepViewer(ViewerSession& session);
+int finishViewer(ViewerSession* session);
+
 }  // namespace voxlab

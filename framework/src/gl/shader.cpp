@@ -64,6 +64,33 @@ bool parseIntUniform(const std::string& line, std::string* name) {
     return true;
 }
 
+}  // namespace
+
+GlslDialect nativeGlslDialect() {
+#ifdef __EMSCRIPTEN__
+    return GlslDialect::Es300;
+#else
+    return GlslDialect::Core330;
+#endif
+}
+
+std::string versionPreamble(const std::string& firstLine, GlslDialect dialect, const std::string& where) {
+    static const std::regex version(R"(^\s*#\s*version\s+330(\s+core)?\s*(//.*)?\r?$)");
+    if (!std::regex_match(firstLine, version))
+        throw ShaderError(where + ": an entry shader's first line is '#version 330 core' (found '" +
+                          firstLine.substr(0, 60) + "')");
+    if (dialect == GlslDialect::Core330) return "#version 330 core\n";
+    // ES has no default precision for float in fragment shaders nor for any
+    // sampler type; highp everywhere is what the core profile means.
+    std::string text = "#version 300 es\nprecision highp float;\nprecision highp int;\n";
+    for (const char* sampler : {"sampler2D", "sampler3D", "isampler2D", "isampler3D", "usampler2D",
+                                "usampler3D", "sampler2DArray", "samplerCube"})
+        text += std::string("precision highp ") + sampler + ";\n";
+    return text;
+}
+
+namespace {
+
 struct Preprocessor {
     const ShaderLibrary& lib;
     const ShaderConstants& constants;
@@ -91,7 +118,7 @@ struct Preprocessor {
             if (lineNo == 1 && isEntry) {
                 // `#version` must come first; everything after it is
                 // numbered from line 2 of file 0.
-                out.text += line + "\n" + lineDirective(fileId, 2);
+                out.text += versionPreamble(line, lib.dialect(), displayPath(path) + ":1") + lineDirective(fileId, 2);
                 continue;
             }
             if (parseInclude(line, &name)) {
@@ -139,6 +166,8 @@ unsigned compileStage(GLenum stage, const PreprocessedShader& src) {
 std::string PreprocessedShader::mapLog(const std::string& log) const {
     static const std::regex mesa(R"(^(\d+):(\d+)\((\d+)\):\s*(.*)$)");
     static const std::regex nvidia(R"(^(\d+)\((\d+)\)\s*:\s*(.*)$)");
+    // ANGLE (WebGL in Chromium) and glslang: "ERROR: 0:12: 'x' : undeclared identifier"
+    static const std::regex angle(R"(^(ERROR|WARNING):\s*(\d+):(\d+):\s*(.*)$)");
     std::istringstream in(log);
     std::string line, result;
     while (std::getline(in, line)) {
@@ -155,6 +184,8 @@ std::string PreprocessedShader::mapLog(const std::string& log) const {
             line = where(m[2]) + ":" + std::string(m[3]) + ": " + std::string(m[4]);
         else if (std::regex_match(line, m, nvidia))
             line = where(m[2]) + ": " + std::string(m[3]);
+        else if (std::regex_match(line, m, angle))
+            line = where(m[3]) + ": " + (m[1] == "ERROR" ? "error: " : "warning: ") + std::string(m[4]);
         result += (result.empty() ? "" : "\n") + line;
     }
     return result.empty() ? "shader compilation failed with an empty log" : result;

@@ -3,7 +3,6 @@
 
 #include <cerrno>
 #include <cstdio>
-#include <charconv>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -11,13 +10,12 @@
 #include <system_error>
 
 #include "voxlab/error.h"
+#include "voxlab/number_text.h"
 
 namespace voxlab::json_text {
 
 double shortFloat(float f) {
-    char buf[32];
-    auto res = std::to_chars(buf, buf + sizeof buf, f);
-    const double d = std::strtod(std::string(buf, res.ptr).c_str(), nullptr);
+    const double d = std::strtod(shortestText(f).c_str(), nullptr);
     return float(d) == f ? d : double(f);
 }
 

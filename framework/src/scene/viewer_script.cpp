@@ -1,5 +1,6 @@
 // voxlab: viewer scripts. The format is in viewer_script.h.
 #include "voxlab/viewer_script.h"
+#include "voxlab/number_text.h"
 
 #include <charconv>
 #include <cmath>
@@ -34,8 +35,7 @@ bool parseNumber(const std::string& text, double* out) {
     const char* last = text.data() + text.size();
     if (!first || first == last) return false;
     double value = 0.0;
-    const auto [end, ec] = std::from_chars(first, last, value);
-    if (ec != std::errc() || end != last || !std::isfinite(value)) return false;
+    if (!parseDoubleExactly(first, last, &value) || !std::isfinite(value)) return false;
     *out = value;
     return true;
 }

@@ -14,7 +14,6 @@
 // dropped) or else from the lengths of the "space directions" vectors.
 // Other fields (kinds, space origin, ...) are tolerated and ignored.
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -24,6 +23,7 @@
 
 #include "volume_io_util.h"
 #include "voxlab/atomic_file.h"
+#include "voxlab/number_text.h"
 
 namespace voxlab {
 
@@ -264,9 +264,7 @@ const char* nrrdTypeName(VoxelType type) {
 
 // Shortest text that reads back as exactly the same double.
 std::string exactText(double v) {
-    char buf[64];
-    auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
-    return ec == std::errc() ? std::string(buf, end) : std::to_string(v);
+    return shortestText(v);
 }
 
 // The gzip encoding of `data`, appended to `out` chunk by chunk.

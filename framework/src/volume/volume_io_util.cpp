@@ -1,5 +1,6 @@
 // voxlab (internal): file, gzip, byte-order and number helpers for loaders.
 #include "volume_io_util.h"
+#include "voxlab/number_text.h"
 
 #include <algorithm>
 #include <cctype>
@@ -247,9 +248,7 @@ bool parseInt(const std::string& text, long long& out) {
 
 bool parseDouble(const std::string& text, double& out) {
     if (text.empty()) return false;
-    const char* end = text.data() + text.size();
-    auto [ptr, ec] = std::from_chars(skipPlus(text), end, out, std::chars_format::general);
-    return ec == std::errc() && ptr == end;
+    return parseDoubleExactly(skipPlus(text), text.data() + text.size(), &out);
 }
 
 std::string trim(const std::string& text) {

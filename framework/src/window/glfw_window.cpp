@@ -13,7 +13,9 @@ namespace {
 
 std::string lastGlfwError() {
     const char* text = nullptr;
+#ifndef __EMSCRIPTEN__  // emscripten's GLFW (3.2) has no glfwGetError
     glfwGetError(&text);
+#endif
     return text ? text : "unknown GLFW error";
 }
 
@@ -26,7 +28,9 @@ GlfwWindow::GlfwWindow(int width, int height, const std::string& title, bool vis
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);  // required on macOS
     glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
+#ifdef GLFW_SCALE_TO_MONITOR                                // (GLFW 3.3; not emscripten's)
     glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);       // high-DPI screens
+#endif
     window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (!window_) {
         const std::string why = lastGlfwError();

@@ -66,7 +66,11 @@ std::uint64_t contentsHash(const Histogram2D& h) {
     return hash;
 }
 
+#ifdef __EMSCRIPTEN__
+bool glAvailable() { return true; }  // WebGL 2's functions are linked, never loaded
+#else
 bool glAvailable() { return voxlab_gl.GenTextures && voxlab_gl.TexImage2D && voxlab_gl.GetIntegerv; }
+#endif
 
 void upload(GLuint texture, const Histogram2D& histogram, bool logScale) {
     const std::vector<std::uint8_t> image = histogram2DImage(histogram, logScale);

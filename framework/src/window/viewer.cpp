@@ -22,6 +22,13 @@ namespace voxlab {
 namespace viewer {
 namespace {
 
+// The GLSL version line ImGui's OpenGL 3 backend writes in its shaders.
+#ifdef __EMSCRIPTEN__
+constexpr const char* kImGuiGlslVersion = "#version 300 es";
+#else
+constexpr const char* kImGuiGlslVersion = "#version 330 core";
+#endif
+
 State* g_state = nullptr;  // for GLFW's drop callback, which has no user pointer of ours
 
 void onDrop(GLFWwindow*, int count, const char** paths) {
@@ -170,7 +177,11 @@ void loadDropped(State& s) {
 // (times the presentation scale, viewer_style.cpp).
 float windowContentScale(GLFWwindow* window) {
     float sx = 1.0f, sy = 1.0f;
+#ifndef __EMSCRIPTEN__  // (emscripten's GLFW is 3.2: the page's canvas is drawn at CSS pixels)
     glfwGetWindowContentScale(window, &sx, &sy);
+#else
+    (void)window;
+#endif
     return std::max(1.0f, std::max(sx, sy));
 }
 
@@ -230,15 +241,29 @@ void shutDown(State& s) {
 }  // namespace
 }  // namespace viewer
 
-int runViewer(const Scene& initial, const ViewerOptions& options) {
+// A viewer between frames: its state, its window and the script driving it.
+// The native loop and the browser's main loop (web/main_web.cpp) both call
+// stepViewer once a frame.
+struct ViewerSession {
+    ViewerOptions options;
+    GlfwWindow window;
+    viewer::State s;
+    std::unique_ptr<viewer::ScriptRunner> script;
+    int frame = 0;
+    int exitCode = 0;
+    ViewerSession(const ViewerOptions& o) : options(o), window(o.width, o.height, "voxlab") {}
+};
+
+ViewerSession* startViewer(const Scene& initial, const ViewerOptions& options) {
     using namespace viewer;
-    State s;
+    auto volume = std::make_unique<Volume>(loadVolume(initial.dataset));
+    auto session = std::make_unique<ViewerSession>(options);
+    State& s = session->s;
+    GlfwWindow& window = session->window;
     s.scene = initial;
     s.studentRoot = options.studentRoot.empty() ? projectRoot() + "/assignments" : options.studentRoot;
     s.hasReference = defaultImplementationRoot() == projectRoot() + "/reference";
     s.deck = options.deck;
-    auto volume = std::make_unique<Volume>(loadVolume(initial.dataset));
-    GlfwWindow window(options.width, options.height, "voxlab");
     setImplementation(s.main, options.implementationRoot, *volume);
     s.volume = std::move(volume);
     resetCoarseLevel(s);
@@ -249,7 +274,7 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini litter in the working folder
     ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
-    ImGui_ImplOpenGL3_Init("#version 330 core");
+    ImGui_ImplOpenGL3_Init(kImGuiGlslVersion);
     s.windowScale = windowContentScale(window.handle());
     applyUiScale(s, options.uiScale, s.windowScale);
     if (s.deck) {  // a lecture starts with the image alone: Tab and T bring the panels back
@@ -259,50 +284,69 @@ int runViewer(const Scene& initial, const ViewerOptions& options) {
     g_state = &s;
     glfwSetDropCallback(window.handle(), onDrop);
     glfwSwapInterval(options.script.empty() ? 1 : 0);
+    if (!options.script.empty()) session->script = std::make_unique<ScriptRunner>(options.script);
+    return session.release();
+}
 
-    std::unique_ptr<ScriptRunner> script;
-    if (!options.script.empty()) script = std::make_unique<ScriptRunner>(options.script);
-    int exitCode = 0;
-    int frame = 0;
-    while (!glfwWindowShouldClose(window.handle())) {
-        glfwPollEvents();
-        const auto frameStart = Clock::now();
-        glfwGetFramebufferSize(window.handle(), &s.fbWidth, &s.fbHeight);
-        // (A student release comparing with an expected image renders at that image's size.)
-        if ((s.fbWidth != s.imageWidth || s.fbHeight != s.imageHeight) && !comparesWithExpected(s)) s.dirty = s.dirty || !s.interactive;
-        if (script) {
-            try {
-                if (script->step(s, window.handle()) == ScriptRunner::Done) {
-                    if (!options.keepOpen) break;
-                    script.reset();  // the prepared state is the lecturer's now
-                    glfwSwapInterval(1);
-                }
-            } catch (const Error& e) {
-                std::fprintf(stderr, "voxlab: %s\n", e.what());
-                exitCode = 1;
-                break;
+// One frame; false once the viewer is done (its exit code is then set).
+bool stepViewer(ViewerSession& session) {
+    using namespace viewer;
+    State& s = session.s;
+    GLFWwindow* window = session.window.handle();
+    const ViewerOptions& options = session.options;
+    if (glfwWindowShouldClose(window)) return false;
+    glfwPollEvents();
+    const auto frameStart = Clock::now();
+    glfwGetFramebufferSize(window, &s.fbWidth, &s.fbHeight);
+    // (A student release comparing with an expected image renders at that image's size.)
+    if ((s.fbWidth != s.imageWidth || s.fbHeight != s.imageHeight) && !comparesWithExpected(s)) s.dirty = s.dirty || !s.interactive;
+    if (session.script) {
+        try {
+            if (session.script->step(s, window) == ScriptRunner::Done) {
+                if (!options.keepOpen) return false;
+                session.script.reset();  // the prepared state is the lecturer's now
+                glfwSwapInterval(1);
             }
+        } catch (const Error& e) {
+            std::fprintf(stderr, "voxlab: %s\n", e.what());
+            session.exitCode = 1;
+            return false;
         }
-        loadDropped(s);
-        drawFrame(s, window.handle());
-        ++frame;
-        if (!saveRequestedScreenshot(s, script != nullptr)) {
-            exitCode = 1;
-            break;
-        }
-        if (!options.screenshot.empty() && frame >= std::max(options.frames, 2)) {
-            saveWindowScreenshot(s.fbWidth, s.fbHeight, options.screenshot);
-            std::printf("%s\n", options.screenshot.c_str());
-            break;
-        }
-        glfwSwapBuffers(window.handle());
-        s.frameMs = std::chrono::duration<double, std::milli>(Clock::now() - frameStart).count();
-        // Idle: nothing to render and no input; don't spin the CPU.
-        if (!script && !s.dirty && !s.interactive && !s.dragging && !s.panning) glfwWaitEventsTimeout(0.25);
     }
-    g_state = nullptr;
-    shutDown(s);
+    loadDropped(s);
+    drawFrame(s, window);
+    ++session.frame;
+    if (!saveRequestedScreenshot(s, session.script != nullptr)) {
+        session.exitCode = 1;
+        return false;
+    }
+    if (!options.screenshot.empty() && session.frame >= std::max(options.frames, 2)) {
+        saveWindowScreenshot(s.fbWidth, s.fbHeight, options.screenshot);
+        std::printf("%s\n", options.screenshot.c_str());
+        return false;
+    }
+    glfwSwapBuffers(window);
+    s.frameMs = std::chrono::duration<double, std::milli>(Clock::now() - frameStart).count();
+    return true;
+}
+
+int finishViewer(ViewerSession* session) {
+    viewer::g_state = nullptr;
+    viewer::shutDown(session->s);
+    const int exitCode = session->exitCode;
+    delete session;
     return exitCode;
+}
+
+int runViewer(const Scene& initial, const ViewerOptions& options) {
+    ViewerSession* session = startViewer(initial, options);
+    const viewer::State& s = session->s;
+    while (stepViewer(*session)) {
+        // Idle: nothing to render and no input; don't spin the CPU.
+        if (!session->script && !s.dirty && !s.interactive && !s.dragging && !s.panning)
+            glfwWaitEventsTimeout(0.25);
+    }
+    return finishViewer(session);
 }
 
 }  // namespace voxlab

@@ -21,7 +21,7 @@ void updateStubNotice(State& s) {
     for (const std::string& f : s.main.engine->lastRenderSources()) {
         std::error_code ec;
         const auto stamp = std::filesystem::last_write_time(f, ec);
-        key += "\n" + f + " " + std::to_string(ec ? 0 : stamp.time_since_epoch().count());
+        key += "\n" + f + " " + std::to_string(ec ? 0LL : (long long)stamp.time_since_epoch().count());
     }
     if (key == s.stubKey) return;
     s.stubKey = key;

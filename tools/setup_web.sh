@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# voxlab in the browser: builds the WebAssembly viewer and its page into
+# build-web/site (called by `tools/setup.sh --web`; see docs/web.md).
+#
+#   1. installs Debian's emscripten (and chromium, for the browser test) if
+#      they are missing;
+#   2. fetches Debian's source packages of Dear ImGui and zlib into
+#      build-web/third_party with apt's own client, through a private list
+#      folder (nothing in /etc/apt changes), since emscripten's "ports" would
+#      download from the internet at build time;
+#   3. configures web/ with emcmake and builds it.
+#
+# Environment: VOXLAB_WEB_BUILD_DIR (default: build-web), VOXLAB_JOBS.
+set -euo pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build="${VOXLAB_WEB_BUILD_DIR:-$root/build-web}"
+jobs="${VOXLAB_JOBS:-$(nproc 2>/dev/null || echo 2)}"
+
+packages=(emscripten chromium glslang-tools fonts-dejavu-core libglm-dev libstb-dev nlohmann-json3-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup-web: installing ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# emscripten's JavaScript tools require acorn, which Debian installs under
+# /usr/share/nodejs; a Node.js from elsewhere (nodesource) does not look there.
+export NODE_PATH="/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}"
+
+# 2. Sources of Dear ImGui and zlib, from the archive this machine already uses.
+third="$build/third_party"
+if ! ls -d "$third"/imgui-* "$third"/zlib-* >/dev/null 2>&1; then
+  apt_dir="$build/apt"
+  mkdir -p "$apt_dir/lists/partial" "$third"
+  mirror=$(sed -n 's/^URIs: *//p; s/^deb  *\(http[^ ]*\).*/\1/p' /etc/apt/sources.list.d/*.sources /etc/apt/sources.list 2>/dev/null \
+           | grep -v security | head -n 1 || true)
+  suite=$(. /etc/os-release && echo "${VERSION_CODENAME:-bookworm}")
+  echo "deb-src ${mirror:-http://deb.debian.org/debian} $suite main" > "$apt_dir/sources.list"
+  apt_opts=(-o "Dir::Etc::SourceList=$apt_dir/sources.list" -o "Dir::Etc::SourceParts=/dev/null"
+            -o "Dir::State::Lists=$apt_dir/lists")
+  apt-get "${apt_opts[@]}" update -qq
+  (cd "$third" && apt-get "${apt_opts[@]}" source --download-only -qq imgui zlib 2>/dev/null \
+     && for t in *.orig.tar.*; do tar xf "$t"; done)
+  ls -d "$third"/imgui-* "$third"/zlib-* >/dev/null || { echo "setup-web: could not fetch the imgui and zlib sources" >&2; exit 1; }
+fi
+
+# Links to Debian's header-only libraries, so that emscripten sees them
+# without the host's /usr/include.
+mkdir -p "$build/include"
+for h in glm nlohmann stb; do ln -sfn "/usr/include/$h" "$build/include/$h"; done
+
+# 3. Configure and build.
+emcmake cmake -S "$root/web" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build" -j "$jobs"
+echo "setup-web: the page is in $build/site: serve it with"
+echo "  (cd $build/site && /usr/bin/python3 -m http.server 8000)   and open http://localhost:8000/"

@@ -7,6 +7,9 @@
 #                           the default scene to a PNG whose path it prints.
 #   tools/setup.sh --test   the same set-up, then the whole test suite
 #                           (tests labelled "heavy" too with --test-all).
+#   tools/setup.sh --web    the same set-up, then the browser workbench:
+#                           tools/setup_web.sh builds it into build-web/site
+#                           (docs/web.md).
 #   tools/setup.sh --grader only what grading needs (an autograder image:
 #                           tools/gradescope/): the packages for headless
 #                           rendering and the voxlab program, no viewer and
@@ -27,9 +30,9 @@ build="${VOXLAB_BUILD_DIR:-$root/build}"
 jobs="${VOXLAB_JOBS:-$(nproc 2>/dev/null || echo 2)}"
 mode="${1:-run}"
 case "$mode" in
-  run|--test|--test-all|--grader) ;;
+  run|--test|--test-all|--grader|--web) ;;
   -h|--help) sed -n '/^set -euo/q; 2,$p' "$0"; exit 0 ;;
-  *) echo "setup.sh: unknown argument '$mode' (expected --test, --test-all, --grader or nothing)" >&2; exit 2 ;;
+  *) echo "setup.sh: unknown argument '$mode' (expected --test, --test-all, --web, --grader or nothing)" >&2; exit 2 ;;
 esac
 
 # 1. System packages, by the names Debian 12 and Ubuntu 22.04 share. Only the
@@ -111,5 +114,8 @@ case "$mode" in
     ;;
   --test-all)
     cd "$build" && ctest --output-on-failure -j "$jobs"
+    ;;
+  --web)
+    exec "$root/tools/setup_web.sh"
     ;;
 esac

@@ -56,6 +56,15 @@ fi
 mkdir -p "$build/include"
 for h in glm nlohmann stb; do ln -sfn "/usr/include/$h" "$build/include/$h"; done
 
+# The self-check's expected images: every stage's scenes rendered by the
+# reference with the native build (tools/setup.sh builds it first).
+if [ ! -d "$build/expected" ]; then
+  [ -x "$root/build/bin/voxlab" ] || { echo "setup-web: no native build at $root/build (run tools/setup.sh first)" >&2; exit 1; }
+  echo "setup-web: rendering the expected images with the reference"
+  LP_NUM_THREADS="${LP_NUM_THREADS:-$jobs}" "$root/build/bin/voxlab" grade --render-expected "$build/expected.tmp" --quiet >/dev/null
+  mv "$build/expected.tmp" "$build/expected"
+fi
+
 # 3. Configure and build.
 emcmake cmake -S "$root/web" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j "$jobs"

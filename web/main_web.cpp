@@ -12,6 +12,8 @@
 #include <string>
 
 #include "voxlab/error.h"
+#include "voxlab/grading.h"
+#include "voxlab/self_check.h"
 #include "voxlab/scene.h"
 #include "voxlab/viewer.h"
 
@@ -38,7 +40,58 @@ void frame() {
     }
 }
 
+// The page's calls (web/shell/workbench.js, through Module.ccall). Strings
+// returned stay valid until the next call.
+std::string g_reply;
+
+const char* reply(std::string text) {
+    g_reply = std::move(text);
+    return g_reply.c_str();
+}
+
+std::string stageTree(int student) { return voxlab::projectRoot() + (student ? "/assignments" : "/reference"); }
+
 }  // namespace
+
+extern "C" {
+
+// Shows the stage's first grading scene, rendered by the student's files
+// (assignments/) or the model (reference/). Returns "" or the error.
+EMSCRIPTEN_KEEPALIVE const char* vx_show_stage(const char* stage, int student) {
+    using namespace voxlab;
+    try {
+        const StageManifest manifest = loadStageManifest(stageTree(student), stage);
+        for (const GradedScene& scene : manifest.scenes)
+            if (!scene.hidden) {
+                if (g_session) viewerShowScene(*g_session, scene.scenePath, stageTree(student));
+                return reply("");
+            }
+        return reply(std::string(stage) + ": no grading scene to show");
+    } catch (const std::exception& e) {
+        return reply(e.what());
+    }
+}
+
+// Compiles the stage files again (after the page wrote them) and renders.
+EMSCRIPTEN_KEEPALIVE void vx_reload() {
+    if (g_session) voxlab::viewerReloadShaders(*g_session);
+}
+
+// The main view's error (file:line for a compiler's message), or "".
+EMSCRIPTEN_KEEPALIVE const char* vx_error() { return reply(g_session ? voxlab::viewerError(*g_session) : ""); }
+
+// The self-check of one stage (self_check.h), as JSON.
+EMSCRIPTEN_KEEPALIVE const char* vx_self_check(const char* stage, int student) {
+    using namespace voxlab;
+    try {
+        SelfCheckOptions options{stageTree(student), projectRoot() + "/expected", "/tmp/self-check/" + std::string(stage)};
+        return reply(selfCheckStage(stage, options).dump());
+    } catch (const std::exception& e) {
+        return reply(nlohmann::json{{"stage", stage}, {"status", "error"}, {"message", e.what()}}.dump());
+    }
+}
+
+}  // extern "C"
 
 int main(int argc, char** argv) {
     using namespace voxlab;

@@ -37,4 +37,13 @@ ViewerSession* startViewer(const Scene& scene, const ViewerOptions& options);
 bool stepViewer(ViewerSession& session);
 int finishViewer(ViewerSession* session);
 
+// For a page that edits stage files itself (web/workbench.js): show a scene
+// file rendered by an implementation folder (throws voxlab::Error, and the
+// viewer is unchanged then); compile the stage files again now; and the
+// main view's current error (a compiler message at file:line, or a render
+// error), empty when its last render succeeded with freshly compiled shaders.
+void viewerShowScene(ViewerSession& session, const std::string& scenePath, const std::string& implementationRoot);
+void viewerReloadShaders(ViewerSession& session);
+std::string viewerError(const ViewerSession& session);
+
 }  // namespace voxlab

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -316,6 +317,18 @@ double creditForFailedCases(double failedFraction) {
     if (!(failedFraction >= 0.0)) return 0.0;
     if (failedFraction == 0.0) return 1.0;
     return 0.5 * std::max(0.0, 1.0 - failedFraction / 0.1);
+}
+
+nlohmann::json sceneVerdict(const ImageMetrics& m, const Tolerance& tolerance, double* credit) {
+    const double ratio = toleranceRatio(m, tolerance);
+    *credit = creditForRatio(ratio);
+    char line[240];
+    std::snprintf(line, sizeof line,
+                  "%.2f%% of pixels off by more than %g levels, largest patch off by more than %g: %d px, "
+                  "SSIM %.4f, FLIP %.4f",
+                  100.0 * m.fractionOver, tolerance.maxDifference, tolerance.clusterDifference, m.largestCluster,
+                  m.ssim, m.flipMean);
+    return {{"metrics", toJson(m)}, {"status", ratio <= 1.0 ? "passed" : "failed"}, {"message", line}};
 }
 
 nlohmann::json toJson(const ImageMetrics& m) {

@@ -139,17 +139,7 @@ json scoreScene(const GradedScene& scene, const StageRun& run, const RunOutcome&
             entry["images"]["submission"] = base + ".submission.png";
             entry["images"]["flip"] = base + ".flip.png";
             entry["images"]["difference"] = base + ".difference.png";
-            entry["metrics"] = toJson(m);
-            const double ratio = toleranceRatio(m, scene.tolerance);
-            *credit = creditForRatio(ratio);
-            entry["status"] = ratio <= 1.0 ? "passed" : "failed";
-            char line[240];
-            std::snprintf(line, sizeof line,
-                          "%.2f%% of pixels off by more than %g levels, largest patch off by more than %g: %d px, "
-                          "SSIM %.4f, FLIP %.4f",
-                          100.0 * m.fractionOver, scene.tolerance.maxDifference, scene.tolerance.clusterDifference,
-                          m.largestCluster, m.ssim, m.flipMean);
-            entry["message"] = line;
+            entry.update(sceneVerdict(m, scene.tolerance, credit));
         } else if (error != outcome.results.errors.end()) {
             throw Error(firstLine(relativePaths(error->second.value("message", "error"), run)));
         } else {

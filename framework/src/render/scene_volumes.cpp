@@ -67,6 +67,30 @@ glm::vec2 volumeTextureScaleOffset(VoxelType type) {
     return {1.0f, 0.0f};
 }
 
+// WebGL 2 has no 16-bit normalised textures (only with EXT_texture_norm16,
+// which software renderers lack): there a 16-bit box is stored as R32F
+// holding the same normalised values, (v + shift) / 65535, exactly (16 bits
+// fit a float's 24-bit mantissa), one z-slice at a time. Twice the memory,
+// and the same numbers in every shader. (Hardware filtering of R32F needs
+// OES_texture_float_linear; the explicit trilinear path never needs it.)
+template <class T>
+void uploadSixteenBitsAsFloat(const Volume& volume, const glm::ivec3& origin, const glm::ivec3& size, int shift) {
+    const glm::ivec3 d = volume.dims();
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, size.x, size.y, size.z, 0, GL_RED, GL_FLOAT, nullptr);
+    for (GLenum name : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS,
+                        GL_UNPACK_SKIP_IMAGES})
+        glPixelStorei(name, 0);
+    std::vector<float> slice(std::size_t(size.x) * std::size_t(size.y));
+    const auto* src = static_cast<const T*>(volume.data());
+    for (int z = 0; z < size.z; ++z) {
+        for (int y = 0; y < size.y; ++y) {
+            const T* row = src + (std::size_t(origin.z + z) * d.y + std::size_t(origin.y + y)) * d.x + origin.x;
+            for (int x = 0; x < size.x; ++x) slice[std::size_t(y) * size.x + x] = float(int(row[x]) + shift) / 65535.0f;
+        }
+        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z, size.x, size.y, 1, GL_RED, GL_FLOAT, slice.data());
+    }
+}
+
 // Straight from the volume's memory: the unpack state picks the box's rows
 // out of the whole volume, so no copy of the box is made (int16 is shifted
 // one z-slice at a time).
@@ -79,6 +103,15 @@ glm::vec2 uploadVolumeBox(unsigned texture, const Volume& volume, const glm::ive
     glPixelStorei(GL_UNPACK_SKIP_PIXELS, origin.x);
     glPixelStorei(GL_UNPACK_SKIP_ROWS, origin.y);
     glPixelStorei(GL_UNPACK_SKIP_IMAGES, origin.z);
+#ifdef __EMSCRIPTEN__
+    if (volume.type() == VoxelType::UInt16) uploadSixteenBitsAsFloat<std::uint16_t>(volume, origin, size, 0);
+    if (volume.type() == VoxelType::Int16) uploadSixteenBitsAsFloat<std::int16_t>(volume, origin, size, 32768);
+    if (volume.type() == VoxelType::UInt16 || volume.type() == VoxelType::Int16) {
+        textureParameters(GL_TEXTURE_3D, GL_NEAREST);
+        checkGlError("uploading a volume texture");
+        return volumeTextureScaleOffset(volume.type());
+    }
+#endif
     switch (volume.type()) {
         case VoxelType::UInt8:
             glTexImage3D(GL_TEXTURE_3D, 0, GL_R8, size.x, size.y, size.z, 0, GL_RED, GL_UNSIGNED_BYTE, volume.data());

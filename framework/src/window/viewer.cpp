@@ -338,6 +338,22 @@ int finishViewer(ViewerSession* session) {
     return exitCode;
 }
 
+void viewerShowScene(ViewerSession& session, const std::string& scenePath, const std::string& implementationRoot) {
+    viewer::State& s = session.s;
+    const Scene scene = Scene::load(scenePath);
+    if (implementationRoot != s.main.implementation) viewer::setImplementation(s.main, implementationRoot, *s.volume);
+    s.main.renderer.clear();  // the scene's renderer
+    viewer::setScene(s, scene, scenePath);
+}
+
+void viewerReloadShaders(ViewerSession& session) { viewer::reloadShaders(session.s); }
+
+std::string viewerError(const ViewerSession& session) {
+    const viewer::Side& side = session.s.main;
+    if (!side.error.empty()) return side.error;
+    return side.engine ? side.engine->shaderError() : std::string();
+}
+
 int runViewer(const Scene& initial, const ViewerOptions& options) {
     ViewerSession* session = startViewer(initial, options);
     const viewer::State& s = session->s;

@@ -1,0 +1,282 @@
+// voxlab workbench: the page around the WebAssembly viewer (docs/web.md).
+//
+// The viewer itself is the native one, compiled (web/main_web.cpp); this file
+// is only the student's side of the page: the stage's files in an editor,
+// saved into the module's file system and compiled by the viewer; the
+// handout; the self-check, whose verdicts come from the grader's C++
+// (framework/src/grade/self_check.cpp). Nothing here judges an image.
+'use strict';
+
+const ROOT = '/voxlab';
+const STAGE_FILE = /\.(glsl|frag|vert|cpp|h)$/;
+const $ = (id) => document.getElementById(id);
+
+var Module = {
+  canvas: $('canvas'),
+  print: (text) => console.log(text),
+  printErr: (text) => console.warn(text),
+  postRun: [() => workbench.start()],
+};
+
+const workbench = {
+  stage: '',
+  student: 1,
+  file: '',
+  edits: {},  // path -> text not yet saved
+  ready: false,
+
+  tree() { return ROOT + (this.student ? '/assignments' : '/reference'); },
+  stageDir() { return this.tree() + '/' + this.stage; },
+  exists(path) { try { Module.FS.stat(path); return true; } catch (e) { return false; } },
+  read(path) { return Module.FS.readFile(path, { encoding: 'utf8' }); },
+
+  start() {
+    $('loading').hidden = true;
+    if (!this.exists(ROOT + '/reference')) $('tree').options[1].disabled = true;  // a student release
+    this.fillStages();
+    for (const b of document.querySelectorAll('#tabs button')) b.onclick = () => this.showTab(b.dataset.tab);
+    $('stage').onchange = () => this.openStage($('stage').value);
+    $('tree').onchange = () => { this.student = Number($('tree').value); this.openStage(this.stage); };
+    $('compile').onclick = () => this.compile();
+    $('download').onclick = () => this.saveToDisk();
+    $('open').onchange = (e) => this.openFromDisk(e.target.files[0]);
+    $('run-check').onclick = () => this.selfCheck();
+    $('why-native').onclick = (e) => { e.preventDefault(); $('why-native-text').hidden = false; };
+    const editor = $('editor');
+    editor.oninput = () => { this.edits[this.path()] = editor.value; this.numberLines(); };
+    editor.onscroll = () => { $('gutter').scrollTop = editor.scrollTop; };
+    editor.onkeydown = (e) => this.editorKey(e);
+    document.addEventListener('keydown', (e) => {
+      if ((e.ctrlKey || e.metaKey) && e.key === 's') { e.preventDefault(); this.compile(); }
+    });
+    this.openStage($('stage').value);
+    this.ready = true;
+  },
+
+  // Every stage folder with a grading.json, in teaching order.
+  fillStages() {
+    const base = ROOT + '/assignments';
+    const stages = Module.FS.readdir(base).filter((d) => this.exists(`${base}/${d}/grading.json`)).map((d) => {
+      const m = JSON.parse(this.read(`${base}/${d}/grading.json`));
+      return { name: d, title: m.title || d, order: m.order || 0 };
+    });
+    stages.sort((a, b) => a.order - b.order || a.name.localeCompare(b.name));
+    $('stage').innerHTML = '';
+    for (const s of stages) $('stage').add(new Option(`${s.order}. ${s.title}`, s.name));
+    const wanted = new URLSearchParams(location.search).get('stage');
+    if (wanted && stages.some((s) => s.name === wanted)) $('stage').value = wanted;
+  },
+
+  openStage(stage) {
+    this.stage = stage;
+    const files = Module.FS.readdir(this.stageDir()).filter((f) => STAGE_FILE.test(f)).sort();
+    $('files').innerHTML = '';
+    for (const f of files) {
+      const b = document.createElement('button');
+      b.textContent = f;
+      b.onclick = () => this.openFile(f);
+      $('files').appendChild(b);
+    }
+    this.openFile(files[0] || '');
+    this.showHandout();
+    $('check-summary').textContent = '';
+    $('check-table').innerHTML = '';
+    const error = Module.ccall('vx_show_stage', 'string', ['string', 'number'], [stage, this.student]);
+    this.setStatus(error || `showing ${stage}'s first grading scene, drawn by ${this.student ? 'your files' : 'the reference'}`, !!error);
+  },
+
+  path() { return this.stageDir() + '/' + this.file; },
+
+  openFile(name) {
+    this.file = name;
+    for (const b of $('files').children) b.classList.toggle('on', b.textContent === name);
+    const p = this.path();
+    $('editor').value = name ? (this.edits[p] ?? this.read(p)) : '';
+    this.numberLines();
+  },
+
+  numberLines() {
+    const n = $('editor').value.split('\n').length;
+    $('gutter').textContent = Array.from({ length: n }, (_, i) => i + 1).join('\n');
+  },
+
+  editorKey(e) {
+    if (e.key !== 'Tab') return;
+    e.preventDefault();
+    document.execCommand('insertText', false, '    ');
+  },
+
+  // Writes the file where the viewer reads it, has the viewer compile it,
+  // and shows what the compiler said once a frame has been drawn with it.
+  compile() {
+    if (!this.file) return;
+    const p = this.path();
+    Module.FS.writeFile(p, $('editor').value);
+    delete this.edits[p];
+    if (/\.(cpp|h)$/.test(this.file)) {
+      this.showErrors(['C++ stages are compiled by the native build only; this page draws with the version compiled into it.']);
+      return;
+    }
+    Module.ccall('vx_reload', null, [], []);
+    this.afterFrames(2, () => {
+      const error = Module.ccall('vx_error', 'string', [], []);
+      this.showErrors(error ? error.split('\n') : []);
+    });
+  },
+
+  afterFrames(count, then) {
+    const target = (Module.voxlabFrames || 0) + count;
+    const wait = () => ((Module.voxlabFrames || 0) >= target ? then() : requestAnimationFrame(wait));
+    requestAnimationFrame(wait);
+  },
+
+  // Compiler lines name files as stage/file:line; a line of the open file
+  // selects that line in the editor when clicked.
+  showErrors(lines) {
+    const list = $('errors');
+    list.innerHTML = '';
+    if (!lines.length) {
+      const ok = document.createElement('li');
+      ok.className = 'ok';
+      ok.textContent = `${this.file}: compiled, the view shows it`;
+      list.appendChild(ok);
+      this.setStatus('compiled', false);
+      return;
+    }
+    for (const line of lines) {
+      const li = document.createElement('li');
+      li.textContent = line;
+      const m = line.match(/([\w./-]+):(\d+)/);
+      if (m && m[1].endsWith(this.stage + '/' + this.file)) li.onclick = () => this.selectLine(Number(m[2]));
+      list.appendChild(li);
+    }
+    this.setStatus('not compiled: the view keeps the last shader that compiled', true);
+  },
+
+  selectLine(n) {
+    const editor = $('editor');
+    const lines = editor.value.split('\n');
+    const start = lines.slice(0, n - 1).reduce((sum, l) => sum + l.length + 1, 0);
+    editor.focus();
+    editor.setSelectionRange(start, start + (lines[n - 1] || '').length);
+    editor.scrollTop = Math.max(0, (n - 5) * parseFloat(getComputedStyle(editor).lineHeight));
+  },
+
+  setStatus(text, bad) {
+    $('status').textContent = text;
+    $('status').classList.toggle('bad', bad);
+  },
+
+  async saveToDisk() {
+    const text = $('editor').value;
+    if (window.showSaveFilePicker) {  // the File System Access API (Chromium)
+      try {
+        const handle = await window.showSaveFilePicker({ suggestedName: this.file });
+        const out = await handle.createWritable();
+        await out.write(text);
+        await out.close();
+        return;
+      } catch (e) {
+        if (e.name === 'AbortError') return;
+      }
+    }
+    const a = document.createElement('a');
+    a.href = URL.createObjectURL(new Blob([text], { type: 'text/plain' }));
+    a.download = this.file;
+    a.click();
+    URL.revokeObjectURL(a.href);
+  },
+
+  async openFromDisk(file) {
+    if (!file) return;
+    $('editor').value = await file.text();
+    this.edits[this.path()] = $('editor').value;
+    this.numberLines();
+    this.setStatus(`${file.name} loaded into ${this.file}: Save and compile to see it`, false);
+  },
+
+  showTab(name) {
+    for (const b of document.querySelectorAll('#tabs button')) b.classList.toggle('on', b.dataset.tab === name);
+    for (const t of document.querySelectorAll('.tab')) t.classList.toggle('on', t.id === name);
+  },
+
+  showHandout() {
+    const readme = this.stageDir() + '/README.md';
+    $('handout').innerHTML = this.exists(readme) ? markdown(this.read(readme)) : '<p>This stage has no handout.</p>';
+  },
+
+  selfCheck() {
+    $('check-summary').textContent = 'rendering the grading scenes...';
+    $('check-table').innerHTML = '';
+    setTimeout(() => {  // let the message paint first: the check blocks the page while it renders
+      const result = JSON.parse(Module.ccall('vx_self_check', 'string', ['string', 'number'], [this.stage, this.student]));
+      this.showCheck(result);
+    }, 20);
+  },
+
+  showCheck(r) {
+    const summary = $('check-summary');
+    if (!r.scenes) { summary.textContent = r.message; summary.className = 'error'; return; }
+    summary.className = r.status;
+    summary.textContent = `${r.stage}: ${r.status}, ${r.score.toFixed(2)} / ${r.max_score} from the scenes` +
+      (r.checks_native_only ? ` (${r.checks_native_only} function check(s) run only in voxlab check)` : '');
+    const table = $('check-table');
+    table.innerHTML = '<tr><th>scene</th><th>verdict</th><th>expected</th><th>yours</th><th>FLIP</th></tr>';
+    for (const s of r.scenes) {
+      const row = table.insertRow();
+      row.dataset.scene = s.name;
+      row.dataset.status = s.status;
+      row.insertCell().textContent = s.name;
+      const verdict = row.insertCell();
+      verdict.innerHTML = `<b class="${s.status}">${s.status}</b><br>`;
+      verdict.append(s.message || '');
+      for (const key of ['expected', 'submission', 'flip']) {
+        const cell = row.insertCell();
+        const path = s.images && s.images[key];
+        if (!path) continue;
+        const img = document.createElement('img');
+        img.src = URL.createObjectURL(new Blob([Module.FS.readFile(path)], { type: 'image/png' }));
+        img.title = path;
+        cell.appendChild(img);
+      }
+    }
+  },
+};
+
+// Enough Markdown for the handouts: headings, paragraphs, lists, code
+// blocks and spans, emphasis, links; tables shown as written.
+function markdown(text) {
+  const esc = (s) => s.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;');
+  const inline = (s) => esc(s)
+    .replace(/`([^`]+)`/g, '<code>$1</code>')
+    .replace(/\*\*([^*]+)\*\*/g, '<b>$1</b>')
+    .replace(/(^|[^*])\*([^*\s][^*]*)\*/g, '$1<i>$2</i>')
+    .replace(/\[([^\]]+)\]\(([^)\s]+)\)/g, (m, t, url) => (/^(https?:|#)/.test(url) ? `<a href="${url}">${t}</a>` : t));
+  const out = [];
+  let list = null, para = [], code = null;
+  const flush = () => {
+    if (para.length) out.push(`<p>${inline(para.join(' '))}</p>`);
+    para = [];
+    if (list) out.push(`</${list}>`);
+    list = null;
+  };
+  for (const line of text.split('\n')) {
+    if (code !== null) {
+      if (/^```/.test(line)) { out.push(`<pre><code>${esc(code.join('\n'))}</code></pre>`); code = null; } else code.push(line);
+      continue;
+    }
+    let m;
+    if (/^```/.test(line)) { flush(); code = []; }
+    else if ((m = line.match(/^(#{1,4})\s+(.*)/))) { flush(); out.push(`<h${m[1].length}>${inline(m[2])}</h${m[1].length}>`); }
+    else if ((m = line.match(/^\s*([-*]|\d+\.)\s+(.*)/))) {
+      const kind = /\d/.test(m[1]) ? 'ol' : 'ul';
+      if (para.length || list !== kind) { flush(); out.push(`<${kind}>`); list = kind; }
+      out.push(`<li>${inline(m[2])}</li>`);
+    } else if (/^\|/.test(line)) { flush(); out.push(`<pre>${esc(line)}</pre>`); }
+    else if (!line.trim()) flush();
+    else if (list && /^\s+/.test(line)) out[out.length - 1] = out[out.length - 1].replace(/<\/li>$/, ` ${inline(line.trim())}</li>`);
+    else para.push(line.trim());
+  }
+  flush();
+  return out.join('\n');
+}

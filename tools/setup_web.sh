@@ -10,8 +10,17 @@
 #      download from the internet at build time;
 #   3. configures web/ with emcmake and builds it.
 #
+#   tools/setup_web.sh --test   the same, then the browser test
+#       (web/test/browser_test.mjs: headless chromium, screenshots and
+#       figures in build-web/browser-test/).
+#
 # Environment: VOXLAB_WEB_BUILD_DIR (default: build-web), VOXLAB_JOBS.
 set -euo pipefail
+mode="${1:-build}"
+case "$mode" in
+  build|--test) ;;
+  *) echo "setup_web.sh: unknown argument '$mode' (expected --test or nothing)" >&2; exit 2 ;;
+esac
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="${VOXLAB_WEB_BUILD_DIR:-$root/build-web}"
@@ -58,11 +67,12 @@ for h in glm nlohmann stb; do ln -sfn "/usr/include/$h" "$build/include/$h"; don
 
 # The self-check's expected images: every stage's scenes rendered by the
 # reference with the native build (tools/setup.sh builds it first).
-if [ ! -d "$build/expected" ]; then
+if [ ! -d "$build/expected" ] || [ -n "$(find "$root/reference" "$root/shaders" "$root/build/bin/voxlab" -newer "$build/expected" 2>/dev/null | head -n 1)" ]; then
   [ -x "$root/build/bin/voxlab" ] || { echo "setup-web: no native build at $root/build (run tools/setup.sh first)" >&2; exit 1; }
   echo "setup-web: rendering the expected images with the reference"
+  rm -rf "$build/expected.tmp"
   LP_NUM_THREADS="${LP_NUM_THREADS:-$jobs}" "$root/build/bin/voxlab" grade --render-expected "$build/expected.tmp" --quiet >/dev/null
-  mv "$build/expected.tmp" "$build/expected"
+  rm -rf "$build/expected" && mv "$build/expected.tmp" "$build/expected" && touch "$build/expected"
 fi
 
 # 3. Configure and build.
@@ -70,3 +80,10 @@ emcmake cmake -S "$root/web" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j "$jobs"
 echo "setup-web: the page is in $build/site: serve it with"
 echo "  (cd $build/site && /usr/bin/python3 -m http.server 8000)   and open http://localhost:8000/"
+[ "$mode" = --test ] || exit 0
+
+# 4. The browser test: playwright-core (npm, pinned by web/test/package-lock.json)
+#    drives Debian's chromium; it downloads no browser of its own.
+command -v npm >/dev/null || { echo "setup-web: the browser test needs Node.js's npm" >&2; exit 1; }
+[ -d "$root/web/test/node_modules/playwright-core" ] || npm ci --prefix "$root/web/test" --no-audit --no-fund --silent
+node "$root/web/test/browser_test.mjs" "$build/site" "$build/browser-test"

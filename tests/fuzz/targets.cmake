@@ -33,4 +33,5 @@ set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
   src/scene/deck.cpp
   src/render/camera.cpp
   src/io/atomic_file.cpp
-  src/io/fd_io.cpp)
+  src/io/fd_io.cpp
+  src/io/number_text.cpp)

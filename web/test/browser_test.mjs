@@ -1,0 +1,173 @@
+// voxlab workbench in a real browser: Debian's chromium, headless, WebGL 2
+// on SwiftShader, driven by playwright-core (which downloads no browser).
+//
+//   node web/test/browser_test.mjs SITE_DIR OUT_DIR
+//
+// Serves SITE_DIR (build-web/site) from a local port and checks, with a
+// screenshot of each step in OUT_DIR:
+//   1. the first frame comes, and the canvas shows a volume: a good share of
+//      its pixels differ from the background (decoded from the screenshot
+//      itself, not from anything the page reports);
+//   2. a syntax error typed into a stage file shows the compiler's message
+//      at that file and line, and the view keeps drawing;
+//   3. an edit that compiles changes the image;
+//   4. the self-check of the reference passes every scene, and of the
+//      starter's stub fails every scene.
+// OUT_DIR/results.json holds the figures (first-frame time, self-check
+// scores and metrics). Exit status 0 when every check passed.
+import { createServer } from 'node:http';
+import { readFile, writeFile, mkdir } from 'node:fs/promises';
+import { extname, join, normalize } from 'node:path';
+import { inflateSync } from 'node:zlib';
+import { chromium } from 'playwright-core';
+
+const [site, out] = process.argv.slice(2);
+if (!site || !out) {
+  console.error('usage: node browser_test.mjs SITE_DIR OUT_DIR');
+  process.exit(2);
+}
+await mkdir(out, { recursive: true });
+
+const types = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.wasm': 'application/wasm' };
+const server = createServer(async (req, res) => {
+  const path = normalize(decodeURIComponent(new URL(req.url, 'http://x').pathname)).replace(/^(\.\.[/\\])+/, '');
+  try {
+    const body = await readFile(join(site, path === '/' ? 'index.html' : path));
+    res.writeHead(200, { 'Content-Type': types[extname(path)] || 'application/octet-stream' });
+    res.end(body);
+  } catch {
+    res.writeHead(404).end();
+  }
+});
+await new Promise((ok) => server.listen(0, '127.0.0.1', ok));
+const base = `http://127.0.0.1:${server.address().port}/`;
+
+const failures = [];
+const results = {};
+const check = (ok, what) => { console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`); if (!ok) failures.push(what); };
+
+// A PNG (8-bit RGB or RGBA, not interlaced, as Chromium writes them) as
+// {width, height, rgba}.
+function decodePng(buf) {
+  let pos = 8, width = 0, height = 0, channels = 4;
+  const idat = [];
+  while (pos < buf.length) {
+    const len = buf.readUInt32BE(pos), type = buf.toString('latin1', pos + 4, pos + 8), data = buf.subarray(pos + 8, pos + 8 + len);
+    if (type === 'IHDR') { width = data.readUInt32BE(0); height = data.readUInt32BE(4); channels = data[9] === 6 ? 4 : 3; }
+    if (type === 'IDAT') idat.push(data);
+    pos += 12 + len;
+  }
+  const raw = inflateSync(Buffer.concat(idat)), stride = width * channels, px = Buffer.alloc(height * stride);
+  for (let y = 0; y < height; ++y) {
+    const filter = raw[y * (stride + 1)], line = raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1));
+    for (let x = 0; x < stride; ++x) {
+      const a = x >= channels ? px[y * stride + x - channels] : 0, b = y ? px[(y - 1) * stride + x] : 0;
+      const c = x >= channels && y ? px[(y - 1) * stride + x - channels] : 0;
+      const p = a + b - c, pa = Math.abs(p - a), pb = Math.abs(p - b), pc = Math.abs(p - c);
+      const pred = [0, a, b, (a + b) >> 1, pa <= pb && pa <= pc ? a : pb <= pc ? b : c][filter];
+      px[y * stride + x] = (line[x] + pred) & 255;
+    }
+  }
+  return { width, height, channels, px };
+}
+
+// The share of pixels of `img` farther than `levels` from `other` (an
+// image of the same size) or from the colour `other` (an [r, g, b]).
+function shareDifferent(img, other, levels) {
+  let n = 0;
+  for (let i = 0; i < img.width * img.height; ++i)
+    for (let c = 0; c < 3; ++c) {
+      const want = Array.isArray(other) ? other[c] : other.px[i * other.channels + c];
+      if (Math.abs(img.px[i * img.channels + c] - want) > levels) { ++n; break; }
+    }
+  return n / (img.width * img.height);
+}
+
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  args: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox'],
+});
+try {
+  const page = await browser.newPage({ viewport: { width: 1400, height: 860 } });
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  if (process.env.VOXLAB_WEB_TEST_VERBOSE) page.on('console', (m) => console.log('console:', m.text().slice(0, 200)));
+  const frames = () => page.evaluate(() => Module.voxlabFrames || 0);
+  const waitFrames = async (n) => {
+    const target = (await frames()) + n;
+    await page.waitForFunction((t) => (Module.voxlabFrames || 0) >= t, target, { timeout: 60000 });
+  };
+  const canvasShot = async (name) => {
+    const png = await page.locator('#canvas').screenshot({ path: join(out, name) });
+    return decodePng(png);
+  };
+
+  // 1. The first frame, bonsai composite (the default scene), then a volume on screen.
+  const start = Date.now();
+  await page.goto(base + 'index.html?stage=mip');
+  await page.waitForFunction(() => window.Module && Module.voxlabFrames >= 1, null, { timeout: 120000 });
+  results.first_frame_ms = Date.now() - start;
+  await page.waitForFunction(() => typeof workbench !== 'undefined' && workbench.ready, null, { timeout: 60000 });
+  await page.selectOption('#tree', '0');  // the reference draws mip's first grading scene
+  await waitFrames(3);
+  const first = await canvasShot('1-reference-view.png');
+  const corner = [first.px[0], first.px[1], first.px[2]];
+  results.volume_share = shareDifferent(first, corner, 24);
+  check(results.volume_share > 0.05, `the canvas shows a volume (${(100 * results.volume_share).toFixed(1)}% of it differs from the background)`);
+  await page.screenshot({ path: join(out, '1-page.png') });
+
+  // 2. A syntax error in the student's mip.glsl: the message names the file and line.
+  await page.selectOption('#tree', '1');
+  await waitFrames(2);
+  const stub = await canvasShot('2-stub-view.png');
+  const original = await page.inputValue('#editor');
+  const lines = original.split('\n');
+  const badLine = Math.min(lines.length, 12);
+  lines.splice(badLine - 1, 0, 'this line is not GLSL');
+  await page.fill('#editor', lines.join('\n'));
+  await page.click('#compile');
+  await page.waitForFunction(() => document.querySelector('#errors li'), null, { timeout: 60000 });
+  const errorText = await page.innerText('#errors');
+  results.compile_error = errorText.split('\n')[0];
+  check(errorText.includes(`mip/mip.glsl:${badLine}`), `the compile error names mip/mip.glsl:${badLine} ("${results.compile_error}")`);
+  await waitFrames(2);
+  check(true, 'the view keeps drawing after the error');
+  await page.screenshot({ path: join(out, '2-compile-error.png') });
+
+  // 3. An edit that compiles changes the image: the stub's mip_ray, replaced
+  //    by the reference's file (read from the page's own file system).
+  const model = await page.evaluate(() => Module.FS.readFile('/voxlab/reference/mip/mip.glsl', { encoding: 'utf8' }));
+  await page.fill('#editor', model);
+  await page.click('#compile');
+  await page.waitForFunction(() => document.querySelector('#errors li.ok'), null, { timeout: 60000 });
+  await waitFrames(3);
+  const edited = await canvasShot('3-edited-view.png');
+  results.edit_changed_share = shareDifferent(edited, stub, 24);
+  check(results.edit_changed_share > 0.02, `the edit changed the image (${(100 * results.edit_changed_share).toFixed(1)}% of pixels)`);
+  await page.fill('#editor', original);  // back to the stub for step 4
+  await page.click('#compile');
+  await page.waitForFunction(() => document.querySelector('#errors li.ok'), null, { timeout: 60000 });
+
+  // 4. The self-check: the reference passes, the starter's stub fails.
+  await page.click('#tabs button[data-tab=check]');
+  for (const [tree, name, want] of [['0', 'reference', 'passed'], ['1', 'stub', 'failed']]) {
+    await page.selectOption('#tree', tree);
+    await page.click('#run-check');
+    await page.waitForFunction(() => document.querySelectorAll('#check-table tr').length > 1, null, { timeout: 300000 });
+    const rows = await page.$$eval('#check-table tr[data-scene]', (trs) => trs.map((r) => ({
+      scene: r.dataset.scene, status: r.dataset.status, verdict: r.cells[1].innerText.replace(/\s+/g, ' ') })));
+    results[`self_check_${name}`] = { summary: await page.innerText('#check-summary'), scenes: rows };
+    check(rows.length > 0 && rows.every((r) => r.status === want), `self-check of the ${name}: every scene ${want} (${rows.length} scenes)`);
+    await page.screenshot({ path: join(out, `4-self-check-${name}.png`) });
+  }
+  check(errors.length === 0, `no uncaught page errors${errors.length ? ': ' + errors[0] : ''}`);
+} catch (e) {
+  failures.push(String(e));
+  console.log('FAIL', e.message.split('\n')[0]);
+} finally {
+  await browser.close();
+  server.close();
+}
+await writeFile(join(out, 'results.json'), JSON.stringify(results, null, 2));
+console.log(`${failures.length ? 'FAILED' : 'passed'}: screenshots and results.json in ${out}`);
+process.exit(failures.length ? 1 : 0);

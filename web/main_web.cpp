@@ -80,6 +80,9 @@ EMSCRIPTEN_KEEPALIVE void vx_reload() {
 // The main view's error (file:line for a compiler's message), or "".
 EMSCRIPTEN_KEEPALIVE const char* vx_error() { return reply(g_session ? voxlab::viewerError(*g_session) : ""); }
 
+// The dataset on screen (a path in the page's file system).
+EMSCRIPTEN_KEEPALIVE const char* vx_dataset() { return reply(g_session ? voxlab::viewerDataset(*g_session) : ""); }
+
 // The self-check of one stage (self_check.h), as JSON.
 EMSCRIPTEN_KEEPALIVE const char* vx_self_check(const char* stage, int student) {
     using namespace voxlab;

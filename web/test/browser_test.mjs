@@ -160,6 +160,25 @@ try {
     check(rows.length > 0 && rows.every((r) => r.status === want), `self-check of the ${name}: every scene ${want} (${rows.length} scenes)`);
     await page.screenshot({ path: join(out, `4-self-check-${name}.png`) });
   }
+  // 5. A NRRD file dropped on the image (a copy of the bundled fuel.nrrd,
+  //    made into a File as a browser makes one from the desktop) is shown.
+  await page.click('#tabs button[data-tab=edit]');
+  const before = await canvasShot('5-before-drop.png');
+  await page.evaluate(() => {
+    const bytes = Module.FS.readFile('/voxlab/datasets/fuel.nrrd');
+    const data = new DataTransfer();
+    data.items.add(new File([bytes], 'my_fuel.nrrd'));
+    for (const type of ['dragenter', 'dragover', 'drop'])
+      Module.canvas.dispatchEvent(new DragEvent(type, { dataTransfer: data, bubbles: true, cancelable: true }));
+  });
+  await page.waitForFunction(() => Module.ccall('vx_dataset', 'string', [], []).endsWith('my_fuel.nrrd'), null, { timeout: 60000 })
+    .catch(() => {});
+  results.dropped_dataset = await page.evaluate(() => Module.ccall('vx_dataset', 'string', [], []));
+  await waitFrames(3);
+  const after = await canvasShot('5-after-drop.png');
+  results.drop_changed_share = shareDifferent(after, before, 24);
+  check(results.dropped_dataset.endsWith('my_fuel.nrrd') && results.drop_changed_share > 0.02,
+    `a dropped NRRD is shown (${results.dropped_dataset}, ${(100 * results.drop_changed_share).toFixed(1)}% of pixels changed)`);
   check(errors.length === 0, `no uncaught page errors${errors.length ? ': ' + errors[0] : ''}`);
 } catch (e) {
   failures.push(String(e));

@@ -45,5 +45,6 @@ int finishViewer(ViewerSession* session);
 void viewerShowScene(ViewerSession& session, const std::string& scenePath, const std::string& implementationRoot);
 void viewerReloadShaders(ViewerSession& session);
 std::string viewerError(const ViewerSession& session);
+std::string viewerDataset(const ViewerSession& session);  // the path of the volume on screen
 
 }  // namespace voxlab

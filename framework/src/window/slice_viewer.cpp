@@ -2,6 +2,7 @@
 #include "voxlab_gl.h"
 
 #include "voxlab/slice_viewer.h"
+#include "grey_texture.h"
 
 #include <imgui_internal.h>  // to see whether the caller chose the window's size
 
@@ -153,14 +154,12 @@ void SliceViewer::upload(View& view, const Volume& volume, int axis, int index, 
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);  // rows of odd widths are not padded
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, image.width, image.height, 0, GL_RED, GL_UNSIGNED_BYTE, image.grey.data());
+    viewer::uploadGreyTexture(image.width, image.height, image.grey.data(), viewer::GreyAs::Opaque);
     const GLint filter = smooth ? GL_LINEAR : GL_NEAREST;
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    const GLint grey[4] = {GL_RED, GL_RED, GL_RED, GL_ONE};  // one channel shown as opaque grey
-    glTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_RGBA, grey);
 
     glBindTexture(GL_TEXTURE_2D, GLuint(previousTexture));
     glPixelStorei(GL_UNPACK_ALIGNMENT, previousAlignment);

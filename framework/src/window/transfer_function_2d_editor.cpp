@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "transfer_function_editor_drawing.h"
+#include "grey_texture.h"
 
 namespace voxlab {
 
@@ -83,15 +84,12 @@ void upload(GLuint texture, const Histogram2D& histogram, bool logScale) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
     glBindTexture(GL_TEXTURE_2D, texture);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, histogram.valueBins, histogram.gradientBins, 0, GL_RED, GL_UNSIGNED_BYTE,
-                 image.data());
+    // Shown as white with the count as coverage: it blends over the frame.
+    viewer::uploadGreyTexture(histogram.valueBins, histogram.gradientBins, image.data(), viewer::GreyAs::Coverage);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    // Shown as white with the count as coverage: it blends over the frame.
-    const GLint swizzle[4] = {GL_ONE, GL_ONE, GL_ONE, GL_RED};
-    glTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_RGBA, swizzle);
     glBindTexture(GL_TEXTURE_2D, GLuint(boundTexture));
     glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
     glPixelStorei(GL_UNPACK_ROW_LENGTH, rowLength);

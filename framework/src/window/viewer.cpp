@@ -354,6 +354,8 @@ std::string viewerError(const ViewerSession& session) {
     return side.engine ? side.engine->shaderError() : std::string();
 }
 
+std::string viewerDataset(const ViewerSession& session) { return session.s.scene.dataset; }
+
 int runViewer(const Scene& initial, const ViewerOptions& options) {
     ViewerSession* session = startViewer(initial, options);
     const viewer::State& s = session->s;

@@ -86,4 +86,11 @@ echo "  (cd $build/site && /usr/bin/python3 -m http.server 8000)   and open http
 #    drives Debian's chromium; it downloads no browser of its own.
 command -v npm >/dev/null || { echo "setup-web: the browser test needs Node.js's npm" >&2; exit 1; }
 [ -d "$root/web/test/node_modules/playwright-core" ] || npm ci --prefix "$root/web/test" --no-audit --no-fund --silent
-node "$root/web/test/browser_test.mjs" "$build/site" "$build/browser-test"
+# The native `voxlab check` of the same stage, whose verdicts the page's
+# self-check must repeat.
+for tree in reference assignments; do
+  LP_NUM_THREADS="${LP_NUM_THREADS:-$jobs}" "$root/build/bin/voxlab" check --stage mip --submission "$root/$tree" \
+    --out "$build/native-check-$tree" >/dev/null || true
+done
+node "$root/web/test/browser_test.mjs" "$build/site" "$build/browser-test" \
+  "$build/native-check-reference/report.json" "$build/native-check-assignments/report.json"

@@ -63,7 +63,8 @@ EMSCRIPTEN_KEEPALIVE const char* vx_show_stage(const char* stage, int student) {
         const StageManifest manifest = loadStageManifest(stageTree(student), stage);
         for (const GradedScene& scene : manifest.scenes)
             if (!scene.hidden) {
-                if (g_session) viewerShowScene(*g_session, scene.scenePath, stageTree(student));
+                // (The viewer names the reference by an empty folder, as its switch does.)
+                if (g_session) viewerShowScene(*g_session, scene.scenePath, student ? stageTree(1) : "");
                 return reply("");
             }
         return reply(std::string(stage) + ": no grading scene to show");
@@ -82,6 +83,9 @@ EMSCRIPTEN_KEEPALIVE const char* vx_error() { return reply(g_session ? voxlab::v
 
 // The dataset on screen (a path in the page's file system).
 EMSCRIPTEN_KEEPALIVE const char* vx_dataset() { return reply(g_session ? voxlab::viewerDataset(*g_session) : ""); }
+
+// How long the image on screen took to render, in milliseconds.
+EMSCRIPTEN_KEEPALIVE double vx_render_ms() { return g_session ? voxlab::viewerRenderMs(*g_session) : 0.0; }
 
 // The self-check of one stage (self_check.h), as JSON.
 EMSCRIPTEN_KEEPALIVE const char* vx_self_check(const char* stage, int student) {

@@ -11,8 +11,13 @@ const ROOT = '/voxlab';
 const STAGE_FILE = /\.(glsl|frag|vert|cpp|h)$/;
 const $ = (id) => document.getElementById(id);
 
+// ?scene=PATH (in the project tree) opens the viewer on that scene instead
+// of the stage's first grading scene.
+const sceneParam = new URLSearchParams(location.search).get('scene');
+
 var Module = {
   canvas: $('canvas'),
+  arguments: sceneParam ? [ROOT + '/' + sceneParam.replace(/^\/+/, '')] : [],
   print: (text) => console.log(text),
   printErr: (text) => console.warn(text),
   postRun: [() => workbench.start()],
@@ -49,7 +54,7 @@ const workbench = {
     document.addEventListener('keydown', (e) => {
       if ((e.ctrlKey || e.metaKey) && e.key === 's') { e.preventDefault(); this.compile(); }
     });
-    this.openStage($('stage').value);
+    this.openStage($('stage').value, !sceneParam);
     this.ready = true;
   },
 
@@ -67,7 +72,9 @@ const workbench = {
     if (wanted && stages.some((s) => s.name === wanted)) $('stage').value = wanted;
   },
 
-  openStage(stage) {
+  // Opens a stage's files and handout; `show` also puts its first grading
+  // scene in the view.
+  openStage(stage, show = true) {
     this.stage = stage;
     const files = Module.FS.readdir(this.stageDir()).filter((f) => STAGE_FILE.test(f)).sort();
     $('files').innerHTML = '';
@@ -81,6 +88,7 @@ const workbench = {
     this.showHandout();
     $('check-summary').textContent = '';
     $('check-table').innerHTML = '';
+    if (!show) return;
     const error = Module.ccall('vx_show_stage', 'string', ['string', 'number'], [stage, this.student]);
     this.setStatus(error || `showing ${stage}'s first grading scene, drawn by ${this.student ? 'your files' : 'the reference'}`, !!error);
   },

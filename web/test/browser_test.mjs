@@ -1,7 +1,7 @@
 // voxlab workbench in a real browser: Debian's chromium, headless, WebGL 2
 // on SwiftShader, driven by playwright-core (which downloads no browser).
 //
-//   node web/test/browser_test.mjs SITE_DIR OUT_DIR
+//   node web/test/browser_test.mjs SITE_DIR OUT_DIR [NATIVE_REFERENCE NATIVE_STUB]
 //
 // Serves SITE_DIR (build-web/site) from a local port and checks, with a
 // screenshot of each step in OUT_DIR:
@@ -13,6 +13,10 @@
 //   3. an edit that compiles changes the image;
 //   4. the self-check of the reference passes every scene, and of the
 //      starter's stub fails every scene.
+// With the report.json of the native `voxlab check --stage mip` of the
+// reference and of the stub (tools/setup_web.sh --test makes them), each
+// scene's verdict in the page must be the native one: the same status, and
+// for the stub the same verdict line (the same metrics to the digits shown).
 // OUT_DIR/results.json holds the figures (first-frame time, self-check
 // scores and metrics). Exit status 0 when every check passed.
 import { createServer } from 'node:http';
@@ -21,7 +25,7 @@ import { extname, join, normalize } from 'node:path';
 import { inflateSync } from 'node:zlib';
 import { chromium } from 'playwright-core';
 
-const [site, out] = process.argv.slice(2);
+const [site, out, nativeReference, nativeStub] = process.argv.slice(2);
 if (!site || !out) {
   console.error('usage: node browser_test.mjs SITE_DIR OUT_DIR');
   process.exit(2);
@@ -102,12 +106,22 @@ try {
     return decodePng(png);
   };
 
-  // 1. The first frame, bonsai composite (the default scene), then a volume on screen.
+  // 1. The first frame of bonsai composite, the frame rate after it, then
+  //    mip's first grading scene: a volume on screen.
   const start = Date.now();
-  await page.goto(base + 'index.html?stage=mip');
+  await page.goto(base + 'index.html?stage=mip&scene=datasets/scenes/bonsai_composite.json');
   await page.waitForFunction(() => window.Module && Module.voxlabFrames >= 1, null, { timeout: 120000 });
   results.first_frame_ms = Date.now() - start;
   await page.waitForFunction(() => typeof workbench !== 'undefined' && workbench.ready, null, { timeout: 60000 });
+  // (The viewer renders again only when something changes; the render
+  //  time is the one its status line shows.)
+  await waitFrames(5);
+  results.composite_render_ms = await page.evaluate(() => Module.ccall('vx_render_ms', 'number', [], []));
+  results.canvas = await page.evaluate(() => [Module.canvas.width, Module.canvas.height]);
+  const composite = await canvasShot('0-bonsai-composite.png');
+  check(shareDifferent(composite, [composite.px[0], composite.px[1], composite.px[2]], 24) > 0.05,
+    `bonsai composite drawn: first frame ${results.first_frame_ms} ms after loading began, then ` +
+    `${results.composite_render_ms.toFixed(0)} ms a render at ${results.canvas.join('x')}`);
   await page.selectOption('#tree', '0');  // the reference draws mip's first grading scene
   await waitFrames(3);
   const first = await canvasShot('1-reference-view.png');
@@ -158,6 +172,17 @@ try {
       scene: r.dataset.scene, status: r.dataset.status, verdict: r.cells[1].innerText.replace(/\s+/g, ' ') })));
     results[`self_check_${name}`] = { summary: await page.innerText('#check-summary'), scenes: rows };
     check(rows.length > 0 && rows.every((r) => r.status === want), `self-check of the ${name}: every scene ${want} (${rows.length} scenes)`);
+    const native = { reference: nativeReference, stub: nativeStub }[name];
+    if (native) {
+      const report = JSON.parse(await readFile(native, 'utf8'));
+      const stage = report.stages.find((s) => s.stage === 'mip');
+      const same = rows.every((r) => {
+        const n = stage.scenes.find((s) => s.name === r.scene);
+        return n && n.status === r.status && (name === 'reference' || r.verdict.endsWith(n.message));
+      });
+      check(same && rows.length === stage.scenes.filter((s) => !s.hidden).length,
+        `the page's verdicts on the ${name} are voxlab check's (${native})`);
+    }
     await page.screenshot({ path: join(out, `4-self-check-${name}.png`) });
   }
   // 5. A NRRD file dropped on the image (a copy of the bundled fuel.nrrd,

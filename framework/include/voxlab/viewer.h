@@ -37,8 +37,9 @@ ViewerSession* startViewer(const Scene& scene, const ViewerOptions& options);
 bool stepViewer(ViewerSession& session);
 int finishViewer(ViewerSession* session);
 
-// For a page that edits stage files itself (web/workbench.js): show a scene
-// file rendered by an implementation folder (throws voxlab::Error, and the
+// For a page that edits stage files itself (web/shell/workbench.js): show a
+// scene file rendered by an implementation folder ("" is the reference, as
+// in ViewerOptions; throws voxlab::Error, and the
 // viewer is unchanged then); compile the stage files again now; and the
 // main view's current error (a compiler message at file:line, or a render
 // error), empty when its last render succeeded with freshly compiled shaders.
@@ -46,5 +47,6 @@ void viewerShowScene(ViewerSession& session, const std::string& scenePath, const
 void viewerReloadShaders(ViewerSession& session);
 std::string viewerError(const ViewerSession& session);
 std::string viewerDataset(const ViewerSession& session);  // the path of the volume on screen
+double viewerRenderMs(const ViewerSession& session);       // the last image's render time, as its status line says
 
 }  // namespace voxlab

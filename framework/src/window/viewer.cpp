@@ -356,6 +356,8 @@ std::string viewerError(const ViewerSession& session) {
 
 std::string viewerDataset(const ViewerSession& session) { return session.s.scene.dataset; }
 
+double viewerRenderMs(const ViewerSession& session) { return session.s.renderMs; }
+
 int runViewer(const Scene& initial, const ViewerOptions& options) {
     ViewerSession* session = startViewer(initial, options);
     const viewer::State& s = session->s;

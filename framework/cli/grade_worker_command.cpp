@@ -74,18 +74,11 @@ void renderScenes(const StageManifest& manifest, std::map<std::string, Volume>& 
     bool loopChecked = false;
     for (const GradedScene& graded : manifest.scenes) {
         try {
-            Scene scene = Scene::load(graded.scenePath);
-            // Grading renders every sample a submission asks for: skipping
-            // trusts the sampling and gradient stages to read only nearby
-            // voxels, which a faulty submission need not do.
-            scene.skipEmptySpace = false;
-            auto found = volumes.find(scene.dataset);
-            if (found == volumes.end()) found = volumes.emplace(scene.dataset, loadVolume(scene.dataset)).first;
-            engine.setVolume(found->second);
+            const Scene scene = gradingSceneFor(graded, volumes, engine);
             out.image(graded.name, engine.render(scene));
             if (!loopChecked && samplesCountable(scene)) {
                 loopChecked = true;
-                checkForRunawayLoop(graded.name, scene, found->second, engine, out);
+                checkForRunawayLoop(graded.name, scene, *engine.volume(), engine, out);
             }
         } catch (const std::exception& e) {
             out.error("scene", graded.name, errorKind(e), e.what());

@@ -59,6 +59,7 @@
 // mutant suite.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -185,6 +186,16 @@ Tolerance overTolerance(const Tolerance& base, const nlohmann::json& keys, const
 std::vector<std::string> unimplementedFunctions(const std::string& stageFolder);
 
 class RenderEngine;
+class Volume;
+struct Scene;
+// A grading scene made ready to render as the grader renders it: every
+// sample a submission asks for (no empty-space skipping, which trusts the
+// sampling and gradient stages to read only nearby voxels, and a faulty
+// submission need not), its dataset loaded once into `volumes` (which must
+// outlive the engine's use of it) and set on `engine`. Throws voxlab::Error
+// for a scene or dataset that does not load.
+Scene gradingSceneFor(const GradedScene& graded, std::map<std::string, Volume>& volumes, RenderEngine& engine);
+
 // After a render: one line naming the stubs (by stage folder) in the files
 // that render's program came from, the functions the checkerboard stands
 // for, and pointing to `voxlab check`; empty when there are none. The

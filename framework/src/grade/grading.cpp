@@ -15,6 +15,9 @@
 #include "voxlab/error.h"
 #include "voxlab/flip.h"
 #include "voxlab/image_metrics.h"
+#include "voxlab/render_engine.h"
+#include "voxlab/scene.h"
+#include "voxlab/volume.h"
 #include "voxlab/stage_library.h"
 
 namespace voxlab {
@@ -317,6 +320,15 @@ double creditForFailedCases(double failedFraction) {
     if (!(failedFraction >= 0.0)) return 0.0;
     if (failedFraction == 0.0) return 1.0;
     return 0.5 * std::max(0.0, 1.0 - failedFraction / 0.1);
+}
+
+Scene gradingSceneFor(const GradedScene& graded, std::map<std::string, Volume>& volumes, RenderEngine& engine) {
+    Scene scene = Scene::load(graded.scenePath);
+    scene.skipEmptySpace = false;
+    auto found = volumes.find(scene.dataset);
+    if (found == volumes.end()) found = volumes.emplace(scene.dataset, loadVolume(scene.dataset)).first;
+    engine.setVolume(found->second);
+    return scene;
 }
 
 nlohmann::json sceneVerdict(const ImageMetrics& m, const Tolerance& tolerance, double* credit) {

@@ -25,11 +25,7 @@ json checkScene(const GradedScene& graded, RenderEngine& engine, std::map<std::s
     json entry = {{"name", graded.name}, {"weight", graded.weight}};
     *credit = 0.0;
     try {
-        Scene scene = Scene::load(graded.scenePath);
-        scene.skipEmptySpace = false;
-        auto found = volumes.find(scene.dataset);
-        if (found == volumes.end()) found = volumes.emplace(scene.dataset, loadVolume(scene.dataset)).first;
-        engine.setVolume(found->second);
+        const Scene scene = gradingSceneFor(graded, volumes, engine);
         const fs::path submission = out / (graded.name + ".submission.png");
         savePng(engine.render(scene), submission.string());
         const fs::path want = expected / (graded.name + ".png");

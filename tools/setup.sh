@@ -117,6 +117,10 @@ case "$mode" in
     cd "$build" && ctest --output-on-failure -j "$jobs"
     ;;
   --web)
+    if [ ! -x "$root/tools/setup_web.sh" ] || [ ! -d "$root/web" ]; then
+      echo "setup: this tree has no browser build (web/): a student release uses the page its course hosts" >&2
+      exit 1
+    fi
     exec "$root/tools/setup_web.sh"
     ;;
 esac

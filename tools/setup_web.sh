@@ -14,7 +14,12 @@
 #       (web/test/browser_test.mjs: headless chromium, screenshots and
 #       figures in build-web/browser-test/).
 #
-# Environment: VOXLAB_WEB_BUILD_DIR (default: build-web), VOXLAB_JOBS.
+# Environment: VOXLAB_WEB_BUILD_DIR (default: build-web), VOXLAB_JOBS, and
+# VOXLAB_WEB_TREE: the tree whose stages, datasets and expected images the
+# page holds. By default this repository, whose reference/ (the model
+# answers) goes into the page too, so the test can check it; for students,
+# a student release (tools/make_student_release.sh DIR), which has no
+# reference/ and brings its own expected/.
 set -euo pipefail
 mode="${1:-build}"
 case "$mode" in
@@ -25,6 +30,11 @@ esac
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="${VOXLAB_WEB_BUILD_DIR:-$root/build-web}"
 jobs="${VOXLAB_JOBS:-$(nproc 2>/dev/null || echo 2)}"
+tree=$(cd "${VOXLAB_WEB_TREE:-$root}" && pwd)
+if [ "$mode" = --test ] && [ ! -d "$tree/reference" ]; then
+  echo "setup_web.sh: --test checks the reference's self-check, which $tree (a student release?) does not hold" >&2
+  exit 2
+fi
 
 packages=(emscripten chromium glslang-tools fonts-dejavu-core libglm-dev libstb-dev nlohmann-json3-dev)
 missing=()
@@ -67,7 +77,9 @@ for h in glm nlohmann stb; do ln -sfn "/usr/include/$h" "$build/include/$h"; don
 
 # The self-check's expected images: every stage's scenes rendered by the
 # reference with the native build (tools/setup.sh builds it first).
-if [ ! -d "$build/expected" ] || [ -n "$(find "$root/reference" "$root/shaders" "$root/build/bin/voxlab" -newer "$build/expected" 2>/dev/null | head -n 1)" ]; then
+if [ -d "$tree/expected" ]; then
+  echo "setup-web: the expected images of $tree/expected"
+elif [ ! -d "$build/expected" ] || [ -n "$(find "$root/reference" "$root/shaders" "$root/build/bin/voxlab" -newer "$build/expected" 2>/dev/null | head -n 1)" ]; then
   [ -x "$root/build/bin/voxlab" ] || { echo "setup-web: no native build at $root/build (run tools/setup.sh first)" >&2; exit 1; }
   echo "setup-web: rendering the expected images with the reference"
   rm -rf "$build/expected.tmp"
@@ -76,7 +88,7 @@ if [ ! -d "$build/expected" ] || [ -n "$(find "$root/reference" "$root/shaders" 
 fi
 
 # 3. Configure and build.
-emcmake cmake -S "$root/web" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+emcmake cmake -S "$root/web" -B "$build" -DCMAKE_BUILD_TYPE=Release -DVOXLAB_WEB_TREE="$tree" >/dev/null
 cmake --build "$build" -j "$jobs"
 echo "setup-web: the page is in $build/site: serve it with"
 echo "  (cd $build/site && /usr/bin/python3 -m http.server 8000)   and open http://localhost:8000/"

@@ -81,6 +81,16 @@ EMSCRIPTEN_KEEPALIVE void vx_reload() {
 // The main view's error (file:line for a compiler's message), or "".
 EMSCRIPTEN_KEEPALIVE const char* vx_error() { return reply(g_session ? voxlab::viewerError(*g_session) : ""); }
 
+// The canvas's new size in CSS pixels (the page's layout changed).
+EMSCRIPTEN_KEEPALIVE void vx_resize(int width, int height) {
+    if (g_session) voxlab::viewerResize(*g_session, width, height);
+}
+
+// Opens a dataset or scene file of the page's file system, as a drop would.
+EMSCRIPTEN_KEEPALIVE void vx_open(const char* path) {
+    if (g_session) voxlab::viewerOpen(*g_session, path);
+}
+
 // The dataset on screen (a path in the page's file system).
 EMSCRIPTEN_KEEPALIVE const char* vx_dataset() { return reply(g_session ? voxlab::viewerDataset(*g_session) : ""); }
 

@@ -28,6 +28,7 @@ const workbench = {
   student: 1,
   file: '',
   edits: {},  // path -> text not yet saved
+  errorLines: new Set(),  // lines of the open file the compiler named
   ready: false,
 
   tree() { return ROOT + (this.student ? '/assignments' : '/reference'); },
@@ -39,6 +40,7 @@ const workbench = {
     $('loading').hidden = true;
     if (!this.exists(ROOT + '/reference')) $('tree').options[1].disabled = true;  // a student release
     this.fillStages();
+    this.fillDatasets();
     for (const b of document.querySelectorAll('#tabs button')) b.onclick = () => this.showTab(b.dataset.tab);
     $('stage').onchange = () => this.openStage($('stage').value);
     $('tree').onchange = () => { this.student = Number($('tree').value); this.openStage(this.stage); };
@@ -54,8 +56,24 @@ const workbench = {
     document.addEventListener('keydown', (e) => {
       if ((e.ctrlKey || e.metaKey) && e.key === 's') { e.preventDefault(); this.compile(); }
     });
+    // The viewer draws at the canvas's size as the page lays it out.
+    new ResizeObserver(() => {
+      const c = Module.canvas;
+      Module.ccall('vx_resize', null, ['number', 'number'], [Math.round(c.clientWidth), Math.round(c.clientHeight)]);
+    }).observe(Module.canvas);
     this.openStage($('stage').value, !sceneParam);
     this.ready = true;
+  },
+
+  // The bundled volumes; choosing one opens it in the view.
+  fillDatasets() {
+    const dir = ROOT + '/datasets';
+    for (const f of Module.FS.readdir(dir).filter((f) => /\.(nrrd|fld|dat)$/.test(f)).sort())
+      $('dataset').add(new Option(f, `${dir}/${f}`));
+    $('dataset').onchange = () => {
+      if ($('dataset').value) Module.ccall('vx_open', null, ['string'], [$('dataset').value]);
+      else this.openStage(this.stage);
+    };
   },
 
   // Every stage folder with a grading.json, in teaching order.
@@ -97,15 +115,18 @@ const workbench = {
 
   openFile(name) {
     this.file = name;
+    this.errorLines = new Set();
     for (const b of $('files').children) b.classList.toggle('on', b.textContent === name);
     const p = this.path();
     $('editor').value = name ? (this.edits[p] ?? this.read(p)) : '';
     this.numberLines();
   },
 
+  // Line numbers, with the lines the compiler complained about marked.
   numberLines() {
     const n = $('editor').value.split('\n').length;
-    $('gutter').textContent = Array.from({ length: n }, (_, i) => i + 1).join('\n');
+    $('gutter').innerHTML = Array.from({ length: n }, (_, i) =>
+      (this.errorLines.has(i + 1) ? `<span class="bad-line">${i + 1}</span>` : `${i + 1}`)).join('\n');
   },
 
   editorKey(e) {
@@ -143,6 +164,12 @@ const workbench = {
   showErrors(lines) {
     const list = $('errors');
     list.innerHTML = '';
+    this.errorLines = new Set();
+    for (const line of lines) {
+      const m = line.match(/([\w./-]+):(\d+)/);
+      if (m && m[1].endsWith(this.stage + '/' + this.file)) this.errorLines.add(Number(m[2]));
+    }
+    this.numberLines();
     if (!lines.length) {
       const ok = document.createElement('li');
       ok.className = 'ok';
@@ -229,7 +256,7 @@ const workbench = {
     summary.textContent = `${r.stage}: ${r.status}, ${r.score.toFixed(2)} / ${r.max_score} from the scenes` +
       (r.checks_native_only ? ` (${r.checks_native_only} function check(s) run only in voxlab check)` : '');
     const table = $('check-table');
-    table.innerHTML = '<tr><th>scene</th><th>verdict</th><th>expected</th><th>yours</th><th>FLIP</th></tr>';
+    table.innerHTML = '<tr><th>scene</th><th>verdict</th><th>expected</th><th>yours</th><th>FLIP</th><th>difference</th></tr>';
     for (const s of r.scenes) {
       const row = table.insertRow();
       row.dataset.scene = s.name;
@@ -238,7 +265,7 @@ const workbench = {
       const verdict = row.insertCell();
       verdict.innerHTML = `<b class="${s.status}">${s.status}</b><br>`;
       verdict.append(s.message || '');
-      for (const key of ['expected', 'submission', 'flip']) {
+      for (const key of ['expected', 'submission', 'flip', 'difference']) {
         const cell = row.insertCell();
         const path = s.images && s.images[key];
         if (!path) continue;

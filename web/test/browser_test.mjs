@@ -12,7 +12,9 @@
 //      at that file and line, and the view keeps drawing;
 //   3. an edit that compiles changes the image;
 //   4. the self-check of the reference passes every scene, and of the
-//      starter's stub fails every scene.
+//      starter's stub fails every scene;
+//   5. a NRRD file dropped on the image is loaded, and 6. so is a bundled
+//      dataset chosen in the page's list.
 // With the report.json of the native `voxlab check --stage mip` of the
 // reference and of the stub (tools/setup_web.sh --test makes them), each
 // scene's verdict in the page must be the native one: the same status, and
@@ -204,6 +206,12 @@ try {
   results.drop_changed_share = shareDifferent(after, before, 24);
   check(results.dropped_dataset.endsWith('my_fuel.nrrd') && results.drop_changed_share > 0.02,
     `a dropped NRRD is shown (${results.dropped_dataset}, ${(100 * results.drop_changed_share).toFixed(1)}% of pixels changed)`);
+  // 6. A bundled dataset chosen in the page's list is opened.
+  await page.selectOption('#dataset', '/voxlab/datasets/tooth.nrrd');
+  await page.waitForFunction(() => Module.ccall('vx_dataset', 'string', [], []).endsWith('tooth.nrrd'), null, { timeout: 60000 })
+    .catch(() => {});
+  check((await page.evaluate(() => Module.ccall('vx_dataset', 'string', [], []))).endsWith('tooth.nrrd'),
+    'a bundled dataset chosen in the list is opened (tooth.nrrd)');
   check(errors.length === 0, `no uncaught page errors${errors.length ? ': ' + errors[0] : ''}`);
 } catch (e) {
   failures.push(String(e));

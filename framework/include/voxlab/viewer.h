@@ -45,6 +45,10 @@ int finishViewer(ViewerSession* session);
 // error), empty when its last render succeeded with freshly compiled shaders.
 void viewerShowScene(ViewerSession& session, const std::string& scenePath, const std::string& implementationRoot);
 void viewerReloadShaders(ViewerSession& session);
+// The window's new size in pixels (the page's canvas was resized).
+void viewerResize(ViewerSession& session, int width, int height);
+// A dataset or scene file, as if dropped on the window (an error is shown there).
+void viewerOpen(ViewerSession& session, const std::string& path);
 std::string viewerError(const ViewerSession& session);
 std::string viewerDataset(const ViewerSession& session);  // the path of the volume on screen
 double viewerRenderMs(const ViewerSession& session);       // the last image's render time, as its status line says

@@ -68,6 +68,12 @@ std::string GlContext::description() const {
     return kind_ + ": " + str(GL_RENDERER) + ", OpenGL " + str(GL_VERSION);
 }
 
+#ifdef VOXLAB_HAVE_OSMESA
+constexpr bool kHaveOsMesa = true;
+#else
+constexpr bool kHaveOsMesa = false;  // macOS, Windows, the browser: no OSMesa
+#endif
+
 HeadlessBackend parseHeadlessBackend(const std::string& name) {
     if (name.empty() || name == "auto") return HeadlessBackend::Auto;
     if (name == "osmesa") return HeadlessBackend::OSMesa;
@@ -79,10 +85,17 @@ std::unique_ptr<GlContext> createHeadlessContext(HeadlessBackend backend) {
     if (backend == HeadlessBackend::Auto) {
         const char* env = std::getenv("VOXLAB_GL");
         backend = parseHeadlessBackend(env ? env : "");
-        if (backend == HeadlessBackend::Auto) backend = HeadlessBackend::OSMesa;
+        if (backend == HeadlessBackend::Auto) backend = kHaveOsMesa ? HeadlessBackend::OSMesa : HeadlessBackend::EGL;
     }
     return backend == HeadlessBackend::EGL ? createEglContext() : createOsMesaContext();
 }
+
+#ifndef VOXLAB_HAVE_OSMESA
+std::unique_ptr<GlContext> createOsMesaContext() {
+    throw Error("OSMesa: this build of voxlab has no OSMesa (headless rendering on the CPU; Linux's "
+                "libosmesa6-dev was not found at configure time): use --gl egl, or the viewer");
+}
+#endif
 
 #ifndef VOXLAB_HAVE_EGL
 std::unique_ptr<GlContext> createEglContext() {

@@ -11,9 +11,28 @@
 #include "engine_internal.h"
 #include "volume_textures.h"
 #include "voxlab_gl.h"
+#ifdef __EMSCRIPTEN__
+#include <emscripten/html5.h>
+#endif
 
 namespace voxlab {
 namespace {
+
+// The browser build keeps 16-bit and float volumes in R32F textures
+// (scene_volumes.cpp), which WebGL 2 filters only with the extension
+// OES_texture_float_linear: without it "hardware" interpolation would read
+// zeros, a black image. Said in one line instead. Natively: always fine.
+void checkHardwareFiltering(const Scene& scene, const Volume& volume) {
+#ifdef __EMSCRIPTEN__
+    static const bool floatLinear =
+        emscripten_webgl_enable_extension(emscripten_webgl_get_current_context(), "OES_texture_float_linear");
+    if (scene.interpolation == Interpolation::Hardware && volume.type() != VoxelType::UInt8 && !floatLinear)
+        throw Error("this browser's WebGL cannot filter 16-bit or float volumes (no OES_texture_float_linear): "
+                    "choose the trilinear interpolation, or use the native voxlab");
+#else
+    (void)scene, (void)volume;
+#endif
+}
 
 TransferFunction2D fallbackTransferFunction2D(glm::dvec2 window) {
     Tf2dWidget w;
@@ -366,6 +385,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     // (The other side of a cutting plane may be drawn by a renderer that
     // ignores them.)
     if (pass.slot == 0) renderer.checkScene(scene, pass.values);
+    checkHardwareFiltering(scene, *volume_);
     volumeTextures_->set(*volume_, volumeGeneration_, budgetFor(scene), maxTextureSize_);
     const BrickCombine combine = checkBricked(scene, pass);  // None: one texture
     sceneVolumes_->prepare(scene, *volume_, volumeGeneration_, inputs.tf);

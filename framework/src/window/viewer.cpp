@@ -348,6 +348,12 @@ void viewerShowScene(ViewerSession& session, const std::string& scenePath, const
 
 void viewerReloadShaders(ViewerSession& session) { viewer::reloadShaders(session.s); }
 
+void viewerResize(ViewerSession& session, int width, int height) {
+    if (width > 0 && height > 0) glfwSetWindowSize(session.window.handle(), width, height);
+}
+
+void viewerOpen(ViewerSession& session, const std::string& path) { session.s.dropped.push_back(path); }
+
 std::string viewerError(const ViewerSession& session) {
     const viewer::Side& side = session.s.main;
     if (!side.error.empty()) return side.error;

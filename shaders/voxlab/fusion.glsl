@@ -5,8 +5,9 @@
 // size is read at the same place in the box, i.e. resampled onto it by its
 // own voxel coordinates. It is classified by its own transfer function
 // (u_tf2, the same table layout as u_tf) and read as the scene's
-// interpolation says: nearest, or else trilinear in float here (hardware
-// and the cubic interpolations get this trilinear too).
+// interpolation says: nearest, or else trilinear by the GPU's own filtering
+// (the cubic interpolations get this trilinear too; on llvmpipe an 8-bit
+// second volume is filtered in 8-bit fixed point, within a grey level).
 //
 // classify_fused(p, first) combines the first volume's classification at p
 // with the second's, both colour (rgb) and opacity per unit length (a):
@@ -41,16 +42,9 @@ float voxel2_value(ivec3 ijk) {
 float sample_volume2(vec3 p) {
     vec3 v = p / u_volume_extent * vec3(u_volume2_dims);
     if (u_interpolation == 0) return voxel2_value(ivec3(floor(v)));
-    vec3 u = v - 0.5;
-    vec3 lower = floor(u);
-    vec3 w = u - lower;
-    float sum = 0.0;
-    for (int corner = 0; corner < 8; ++corner) {
-        ivec3 o = ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-        vec3 weights = mix(1.0 - w, w, vec3(o));
-        sum += weights.x * weights.y * weights.z * voxel2_value(ivec3(lower) + o);
-    }
-    return sum;
+    // Linear filtering by the GPU (the texture's filter is linear): a shipped
+    // framework file never spells out the sampling stage's interpolation.
+    return textureLod(u_volume2, p / u_volume_extent, 0.0).r * u_value2_scale + u_value2_offset;
 }
 
 vec4 transfer_function2(float value) {

@@ -265,11 +265,27 @@ void SceneVolumes::uploadDistance(const LabelMap& map, const Volume& volume) {
     distanceKey_ = key;
 }
 
+// The same voxels as float32, in data units. The second volume is filtered
+// by the GPU, which filters a float texture in float; an 8-bit one llvmpipe
+// filters in 8-bit fixed point, 20 grey levels off at a steep transfer
+// function's edge.
+static Volume inFloat(const Volume& volume) {
+    if (volume.type() == VoxelType::Float32) return volume;
+    std::vector<std::uint8_t> bytes(volume.voxelCount() * sizeof(float));
+    auto* values = reinterpret_cast<float*>(bytes.data());
+    for (std::size_t i = 0; i < volume.voxelCount(); ++i) values[i] = float(volume.valueAt(i));
+    return Volume(volume.dims(), VoxelType::Float32, volume.spacing(), std::move(bytes), volume.name());
+}
+
 void SceneVolumes::prepareFusion(const Fusion& fusion) {
     if (fusion.dataset != secondPath_ || !second_) {
         secondPath_.clear();
-        second_ = std::make_unique<Volume>(loadVolume(fusion.dataset));
+        second_ = std::make_unique<Volume>(inFloat(loadVolume(fusion.dataset)));
         const glm::vec2 so = uploadVolumeTexture(secondTexture_, *second_);
+        // The GPU interpolates the second volume (fusion.glsl), in float:
+        // texelFetch, for nearest, ignores the filter.
+        glBindTexture(GL_TEXTURE_3D, secondTexture_);
+        textureParameters(GL_TEXTURE_3D, GL_LINEAR);
         secondScale_ = so.x, secondOffset_ = so.y;
         secondPath_ = fusion.dataset;
         secondTfKey_.clear();

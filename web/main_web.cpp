@@ -30,6 +30,7 @@ void frame() {
         more = voxlab::stepViewer(*g_session);
     } catch (const std::exception& e) {  // the native viewer would exit with this line
         std::fprintf(stderr, "voxlab: %s\n", e.what());
+        EM_ASM({ if (Module.voxlabStopped) Module.voxlabStopped(UTF8ToString($0)); }, e.what());
     }
     // The page (and its test) watch this count to know a frame is on screen.
     EM_ASM({ Module.voxlabFrames = $0; }, ++g_frames);
@@ -120,6 +121,7 @@ int main(int argc, char** argv) {
         g_session = startViewer(Scene::load(scenePath), options);
     } catch (const Error& e) {
         std::fprintf(stderr, "voxlab: %s\n", e.what());
+        EM_ASM({ if (Module.voxlabStopped) Module.voxlabStopped(UTF8ToString($0)); }, e.what());
         return 1;
     }
     // The browser calls frame() once per display refresh; main returns at once

@@ -21,6 +21,12 @@ var Module = {
   print: (text) => console.log(text),
   printErr: (text) => console.warn(text),
   postRun: [() => workbench.start()],
+  // The viewer stopped (it could not start, or a frame failed): say why on the page.
+  voxlabStopped: (message) => {
+    $('loading').hidden = false;
+    $('loading').textContent = 'voxlab stopped: ' + message + ' (reload the page to start again)';
+    $('loading').className = 'bad';
+  },
 };
 
 const workbench = {
@@ -37,7 +43,7 @@ const workbench = {
   read(path) { return Module.FS.readFile(path, { encoding: 'utf8' }); },
 
   start() {
-    $('loading').hidden = true;
+    if ($('loading').className !== 'bad') $('loading').hidden = true;  // (unless the viewer could not start)
     if (!this.exists(ROOT + '/reference')) $('tree').options[1].disabled = true;  // a student release
     this.fillStages();
     this.fillDatasets();

@@ -100,9 +100,9 @@ command -v npm >/dev/null || { echo "setup-web: the browser test needs Node.js's
 [ -d "$root/web/test/node_modules/playwright-core" ] || npm ci --prefix "$root/web/test" --no-audit --no-fund --silent
 # The native `voxlab check` of the same stage, whose verdicts the page's
 # self-check must repeat.
-for tree in reference assignments; do
-  LP_NUM_THREADS="${LP_NUM_THREADS:-$jobs}" "$root/build/bin/voxlab" check --stage mip --submission "$root/$tree" \
-    --out "$build/native-check-$tree" >/dev/null || true
+for side in reference assignments; do
+  LP_NUM_THREADS="${LP_NUM_THREADS:-$jobs}" "$root/build/bin/voxlab" check --stage mip --submission "$root/$side" \
+    --out "$build/native-check-$side" >/dev/null || true
 done
 node "$root/web/test/browser_test.mjs" "$build/site" "$build/browser-test" \
   "$build/native-check-reference/report.json" "$build/native-check-assignments/report.json"

@@ -23,14 +23,20 @@ voxlab::ViewerSession* g_session = nullptr;
 
 int g_frames = 0;
 
+// The viewer could not start or a frame failed: the native viewer would exit
+// with this line; the page shows it too (workbench.js: voxlabStopped).
+void sayStopped(const char* why) {
+    std::fprintf(stderr, "voxlab: %s\n", why);
+    EM_ASM({ if (Module.voxlabStopped) Module.voxlabStopped(UTF8ToString($0)); }, why);
+}
+
 void frame() {
     if (!g_session) return;
     bool more = false;
     try {
         more = voxlab::stepViewer(*g_session);
-    } catch (const std::exception& e) {  // the native viewer would exit with this line
-        std::fprintf(stderr, "voxlab: %s\n", e.what());
-        EM_ASM({ if (Module.voxlabStopped) Module.voxlabStopped(UTF8ToString($0)); }, e.what());
+    } catch (const std::exception& e) {
+        sayStopped(e.what());
     }
     // The page (and its test) watch this count to know a frame is on screen.
     EM_ASM({ Module.voxlabFrames = $0; }, ++g_frames);
@@ -120,8 +126,7 @@ int main(int argc, char** argv) {
         options.height = EM_ASM_INT({ return Module.canvas.clientHeight || 640; });
         g_session = startViewer(Scene::load(scenePath), options);
     } catch (const Error& e) {
-        std::fprintf(stderr, "voxlab: %s\n", e.what());
-        EM_ASM({ if (Module.voxlabStopped) Module.voxlabStopped(UTF8ToString($0)); }, e.what());
+        sayStopped(e.what());
         return 1;
     }
     // The browser calls frame() once per display refresh; main returns at once

@@ -167,14 +167,16 @@ const workbench = {
 
   // Compiler lines name files as stage/file:line; a line of the open file
   // selects that line in the editor when clicked.
+  // The line of the open file a compiler's line names, or 0.
+  lineOfOpenFile(message) {
+    const m = message.match(/([\w./-]+):(\d+)/);
+    return m && m[1].endsWith(this.stage + '/' + this.file) ? Number(m[2]) : 0;
+  },
+
   showErrors(lines) {
     const list = $('errors');
     list.innerHTML = '';
-    this.errorLines = new Set();
-    for (const line of lines) {
-      const m = line.match(/([\w./-]+):(\d+)/);
-      if (m && m[1].endsWith(this.stage + '/' + this.file)) this.errorLines.add(Number(m[2]));
-    }
+    this.errorLines = new Set(lines.map((l) => this.lineOfOpenFile(l)).filter((n) => n > 0));
     this.numberLines();
     if (!lines.length) {
       const ok = document.createElement('li');
@@ -187,8 +189,8 @@ const workbench = {
     for (const line of lines) {
       const li = document.createElement('li');
       li.textContent = line;
-      const m = line.match(/([\w./-]+):(\d+)/);
-      if (m && m[1].endsWith(this.stage + '/' + this.file)) li.onclick = () => this.selectLine(Number(m[2]));
+      const n = this.lineOfOpenFile(line);
+      if (n) li.onclick = () => this.selectLine(n);
       list.appendChild(li);
     }
     this.setStatus('not compiled: the view keeps the last shader that compiled', true);

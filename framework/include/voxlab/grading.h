@@ -73,6 +73,17 @@ namespace voxlab {
 // The share of a stage's points earned only when every item passes.
 inline constexpr double kAllPassShare = 0.2;
 
+// The rest is shared by the stage's items (scenes and checks) in proportion
+// to their weights: the points one unit of weight is worth, and the points
+// kept for a stage whose every item passes (both 0 for a stage without
+// items). The grader's reports and the browser's self-check both count so.
+inline double pointsPerWeight(double stagePoints, double weightSum) {
+    return weightSum > 0 ? stagePoints * (1.0 - kAllPassShare) / weightSum : 0.0;
+}
+inline double allPassPoints(double stagePoints, double weightSum) {
+    return weightSum > 0 ? stagePoints * kAllPassShare : 0.0;
+}
+
 // The default tolerances, in one place. Calibrated so that the reference
 // passes against itself rendered another way (hardware instead of explicit
 // trilinear filtering, another llvmpipe thread count), and every mutant in

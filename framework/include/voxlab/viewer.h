@@ -39,10 +39,10 @@ int finishViewer(ViewerSession* session);
 
 // For a page that edits stage files itself (web/shell/workbench.js): show a
 // scene file rendered by an implementation folder ("" is the reference, as
-// in ViewerOptions; throws voxlab::Error, and the
-// viewer is unchanged then); compile the stage files again now; and the
-// main view's current error (a compiler message at file:line, or a render
-// error), empty when its last render succeeded with freshly compiled shaders.
+// in ViewerOptions; throws voxlab::Error, and the viewer is unchanged then);
+// compile the stage files again now; and the main view's current error (a
+// compiler message at file:line, or a render error), empty when its last
+// render succeeded with freshly compiled shaders.
 void viewerShowScene(ViewerSession& session, const std::string& scenePath, const std::string& implementationRoot);
 void viewerReloadShaders(ViewerSession& session);
 // The window's new size in pixels (the page's canvas was resized).

@@ -67,14 +67,13 @@ json selfCheckStage(const std::string& stage, const SelfCheckOptions& options) {
         allPassed = allPassed && entry["status"] == "passed";
         scenes.push_back(entry);
     }
-    // The grader's arithmetic (stage_score.cpp), over these scenes alone.
-    const double perWeight = weightSum > 0 ? manifest.points * (1.0 - kAllPassShare) / weightSum : 0.0;
-    const bool bonus = weightSum > 0 && allPassed;
+    // The grader's arithmetic (grading.h), over these scenes alone.
     return {{"stage", stage},
             {"title", manifest.title},
             {"scenes", scenes},
             {"checks_native_only", manifest.checks.size()},
-            {"score", perWeight * credit + (bonus ? manifest.points * kAllPassShare : 0.0)},
+            {"score", pointsPerWeight(manifest.points, weightSum) * credit +
+                          (allPassed ? allPassPoints(manifest.points, weightSum) : 0.0)},
             {"max_score", manifest.points},
             {"status", weightSum == 0 ? "no scenes" : allPassed ? "passed" : "failed"}};
 }

@@ -256,8 +256,7 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
     }
     // Points per item, in proportion to weight, for all but the share that
     // only a stage with every item passed earns (grading.h).
-    const double itemPoints = manifest.points * (1.0 - kAllPassShare);
-    const double perWeight = weightSum > 0 ? itemPoints / weightSum : 0.0;
+    const double perWeight = pointsPerWeight(manifest.points, weightSum);
     std::vector<std::string> failed;  // the items that did not pass, sorted: a mistake's signature
     for (json* items : {&scenes, &checks})
         for (json& e : *items) {
@@ -269,7 +268,7 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
     const bool allPassed = weightSum > 0 && failed.empty();
     stage["scenes"] = scenes;
     stage["checks"] = checks;
-    const double bonusMax = weightSum > 0 ? manifest.points * kAllPassShare : 0.0;
+    const double bonusMax = allPassPoints(manifest.points, weightSum);
     stage["all_pass"] = {{"max_score", bonusMax},
                          {"score", allPassed ? bonusMax : 0.0},
                          {"status", allPassed ? "passed" : "failed"},

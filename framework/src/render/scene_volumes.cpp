@@ -67,27 +67,26 @@ glm::vec2 volumeTextureScaleOffset(VoxelType type) {
     return {1.0f, 0.0f};
 }
 
-// WebGL 2 has no 16-bit normalised textures (only with EXT_texture_norm16,
-// which software renderers lack): there a 16-bit box is stored as R32F
-// holding the same normalised values, (v + shift) / 65535, exactly (16 bits
-// fit a float's 24-bit mantissa), one z-slice at a time. Twice the memory,
-// and the same numbers in every shader. (Hardware filtering of R32F needs
-// OES_texture_float_linear; the explicit trilinear path never needs it.)
-template <class T>
-void uploadSixteenBitsAsFloat(const Volume& volume, const glm::ivec3& origin, const glm::ivec3& size, int shift) {
+// A box whose voxels are converted on the way (`convert`: a voxel's value
+// as an int -> a texel of type Out), one z-slice at a time, into a texture
+// of `internalFormat` with texels of `type`. The unpack state is reset: the
+// slices are packed.
+template <class In, class Out, class Convert>
+void uploadConvertedSlices(const Volume& volume, const glm::ivec3& origin, const glm::ivec3& size, GLenum internalFormat,
+                           GLenum type, Convert convert) {
     const glm::ivec3 d = volume.dims();
-    glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, size.x, size.y, size.z, 0, GL_RED, GL_FLOAT, nullptr);
+    glTexImage3D(GL_TEXTURE_3D, 0, internalFormat, size.x, size.y, size.z, 0, GL_RED, type, nullptr);
     for (GLenum name : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS,
                         GL_UNPACK_SKIP_IMAGES})
         glPixelStorei(name, 0);
-    std::vector<float> slice(std::size_t(size.x) * std::size_t(size.y));
-    const auto* src = static_cast<const T*>(volume.data());
+    std::vector<Out> slice(std::size_t(size.x) * std::size_t(size.y));
+    const auto* src = static_cast<const In*>(volume.data());
     for (int z = 0; z < size.z; ++z) {
         for (int y = 0; y < size.y; ++y) {
-            const T* row = src + (std::size_t(origin.z + z) * d.y + std::size_t(origin.y + y)) * d.x + origin.x;
-            for (int x = 0; x < size.x; ++x) slice[std::size_t(y) * size.x + x] = float(int(row[x]) + shift) / 65535.0f;
+            const In* row = src + (std::size_t(origin.z + z) * d.y + std::size_t(origin.y + y)) * d.x + origin.x;
+            for (int x = 0; x < size.x; ++x) slice[std::size_t(y) * size.x + x] = convert(int(row[x]));
         }
-        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z, size.x, size.y, 1, GL_RED, GL_FLOAT, slice.data());
+        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z, size.x, size.y, 1, GL_RED, type, slice.data());
     }
 }
 
@@ -103,42 +102,34 @@ glm::vec2 uploadVolumeBox(unsigned texture, const Volume& volume, const glm::ive
     glPixelStorei(GL_UNPACK_SKIP_PIXELS, origin.x);
     glPixelStorei(GL_UNPACK_SKIP_ROWS, origin.y);
     glPixelStorei(GL_UNPACK_SKIP_IMAGES, origin.z);
-#ifdef __EMSCRIPTEN__
-    if (volume.type() == VoxelType::UInt16) uploadSixteenBitsAsFloat<std::uint16_t>(volume, origin, size, 0);
-    if (volume.type() == VoxelType::Int16) uploadSixteenBitsAsFloat<std::int16_t>(volume, origin, size, 32768);
-    if (volume.type() == VoxelType::UInt16 || volume.type() == VoxelType::Int16) {
-        textureParameters(GL_TEXTURE_3D, GL_NEAREST);
-        checkGlError("uploading a volume texture");
-        return volumeTextureScaleOffset(volume.type());
-    }
-#endif
+    // WebGL 2 has no 16-bit normalised textures (only with EXT_texture_norm16,
+    // which software renderers lack): there 16-bit data goes up as R32F
+    // holding the same normalised values, (v + shift) / 65535, exactly (16
+    // bits fit a float's 24-bit mantissa). Twice the memory, the same numbers
+    // in every shader. (Hardware filtering of R32F needs
+    // OES_texture_float_linear; the explicit trilinear path never needs it.)
     switch (volume.type()) {
         case VoxelType::UInt8:
             glTexImage3D(GL_TEXTURE_3D, 0, GL_R8, size.x, size.y, size.z, 0, GL_RED, GL_UNSIGNED_BYTE, volume.data());
             break;
         case VoxelType::UInt16:
+#ifdef __EMSCRIPTEN__
+            uploadConvertedSlices<std::uint16_t, float>(volume, origin, size, GL_R32F, GL_FLOAT,
+                                                        [](int v) { return float(v) / 65535.0f; });
+#else
             glTexImage3D(GL_TEXTURE_3D, 0, GL_R16, size.x, size.y, size.z, 0, GL_RED, GL_UNSIGNED_SHORT, volume.data());
+#endif
             break;
-        case VoxelType::Int16: {
+        case VoxelType::Int16:
             // R16_SNORM would merge -32768 and -32767; shifting keeps every value.
-            glTexImage3D(GL_TEXTURE_3D, 0, GL_R16, size.x, size.y, size.z, 0, GL_RED, GL_UNSIGNED_SHORT, nullptr);
-            glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-            glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, 0);
-            glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
-            glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
-            glPixelStorei(GL_UNPACK_SKIP_IMAGES, 0);
-            std::vector<std::uint16_t> slice(std::size_t(size.x) * std::size_t(size.y));
-            const auto* src = static_cast<const std::int16_t*>(volume.data());
-            for (int z = 0; z < size.z; ++z) {
-                for (int y = 0; y < size.y; ++y) {
-                    const std::int16_t* row =
-                        src + (std::size_t(origin.z + z) * d.y + std::size_t(origin.y + y)) * d.x + origin.x;
-                    for (int x = 0; x < size.x; ++x) slice[std::size_t(y) * size.x + x] = std::uint16_t(int(row[x]) + 32768);
-                }
-                glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z, size.x, size.y, 1, GL_RED, GL_UNSIGNED_SHORT, slice.data());
-            }
+#ifdef __EMSCRIPTEN__
+            uploadConvertedSlices<std::int16_t, float>(volume, origin, size, GL_R32F, GL_FLOAT,
+                                                       [](int v) { return float(v + 32768) / 65535.0f; });
+#else
+            uploadConvertedSlices<std::int16_t, std::uint16_t>(volume, origin, size, GL_R16, GL_UNSIGNED_SHORT,
+                                                               [](int v) { return std::uint16_t(v + 32768); });
+#endif
             break;
-        }
         case VoxelType::Float32:
             glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, size.x, size.y, size.z, 0, GL_RED, GL_FLOAT, volume.data());
             break;

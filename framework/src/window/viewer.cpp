@@ -367,10 +367,15 @@ double viewerRenderMs(const ViewerSession& session) { return session.s.renderMs;
 int runViewer(const Scene& initial, const ViewerOptions& options) {
     ViewerSession* session = startViewer(initial, options);
     const viewer::State& s = session->s;
-    while (stepViewer(*session)) {
-        // Idle: nothing to render and no input; don't spin the CPU.
-        if (!session->script && !s.dirty && !s.interactive && !s.dragging && !s.panning)
-            glfwWaitEventsTimeout(0.25);
+    try {
+        while (stepViewer(*session)) {
+            // Idle: nothing to render and no input; don't spin the CPU.
+            if (!session->script && !s.dirty && !s.interactive && !s.dragging && !s.panning)
+                glfwWaitEventsTimeout(0.25);
+        }
+    } catch (...) {  // the window and ImGui are released before the error goes on
+        finishViewer(session);
+        throw;
     }
     return finishViewer(session);
 }

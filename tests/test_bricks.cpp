@@ -221,6 +221,11 @@ const BrickCase kBrickCases[] = {
     {"iso", "iso", {{"isovalue", 100}}, Interpolation::Trilinear, false, false, Projection::Perspective, false},
     {"iso_depth_no_refinement", "iso", {{"isovalue", 60}, {"depth", 1}, {"refinement_steps", 0}}, Interpolation::Trilinear, false, false,
      Projection::Perspective, false},
+    {"tf2d_shaded", "tf2d", {{"shading", 1}}, Interpolation::Trilinear, false, true,
+     Projection::Perspective, false},
+    // 26 neighbours of 8 voxels each per sample: 30 s on 2 cores, so labelled
+    // heavy (tests/CMakeLists.txt); it reaches no further than central
+    // differences, which the case above covers in the default run.
     {"tf2d_shaded_sobel", "tf2d", {{"shading", 1}, {"sobel", 1}}, Interpolation::Trilinear, false, true,
      Projection::Perspective, false},
 };

@@ -130,6 +130,7 @@ int gradeWorkerCommand(int argc, char** argv) {
     // The engine lives until the checks are done, as the GL context does.
     std::map<std::string, Volume> volumes;
     RenderEngine engine(implementation);
+    engine.setCountingByUniform(true);  // the runaway-loop check reuses the render's program
     renderScenes(manifest, volumes, engine, out);
     for (const GradedCheck& check : manifest.checks) {
         try {

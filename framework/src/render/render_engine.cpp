@@ -406,6 +406,8 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     for (const ParameterSpec& p : renderer.parameters())
         if (p.type == ParameterType::Bool) constants["u_" + p.name] = pass.values.at(p.name) != 0.0 ? 1 : 0;
     sceneVolumes_->addConstants(scene, &constants);
+    const bool countByUniform = countingByUniform_ && combine == BrickCombine::None;
+    if (countByUniform) constants.erase("u_count_samples");
     const ShaderProgram& prog = program(renderer.vertexShader(), renderer.fragmentShader(), constants);
     lastRenderSources_.clear();
     noteSources(prog);
@@ -437,6 +439,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
         bindPrecomputations(p, precomputations, pass.slot);
         sceneVolumes_->bind(p, scene, *volume_);
         if (skipping) bindBricks(p, renderer.emptySpaceRule(pass.values), table, inputs.widgets);
+        if (countByUniform) p.set("u_count_samples", countingSamples_ ? 1 : 0);
     };
     prepare(prog);
 

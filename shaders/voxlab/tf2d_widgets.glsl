@@ -1,5 +1,8 @@
 // voxlab GLSL library: the scene's 2D transfer-function widgets, as the
 // engine uploads them (framework/include/voxlab/transfer_function_2d.h).
+//   u_tf2d_count     how many widgets there are; the engine bakes it into
+//                    the program as a constant, so a loop up to it unrolls
+//                    (much faster on llvmpipe); read it like any uniform
 //   u_tf2d_kind[i]   TF2D_TRIANGLE or TF2D_BOX
 //   u_tf2d_shape[i]  triangle: (value, radius, 0, 0);
 //                    box: (value lo, value hi, gradient lo, gradient hi)

@@ -174,6 +174,8 @@ private:
     unsigned sliceStack(int axis);
     void setSceneUniforms(const ShaderProgram& prog, const Scene& scene) const;
     void draw(const Scene& scene, const Pass& pass);
+    ShaderConstants switchesFor(const Scene& scene, const Pass& pass, const PassInputs& inputs, bool skipping,
+                                BrickCombine combine) const;
     void setPassUniforms(const ShaderProgram& prog, const Scene& scene, const Pass& pass, const PassInputs& inputs);
     // Precomputed textures (render_engine_precompute.cpp): computes the
     // `index`th of the pass's textures unless it is still up to date, and

@@ -363,6 +363,34 @@ void RenderEngine::setPassUniforms(const ShaderProgram& prog, const Scene& scene
     renderer.setUniforms(prog, pass.values);
 }
 
+// The switches baked into a pass's program (see ShaderConstants): the
+// interpolation, whether there is a transfer function, the pass's kind,
+// every bool parameter, the number of 2D transfer-function widgets, and
+// the label map's and second volume's own (scene_volumes.h).
+ShaderConstants RenderEngine::switchesFor(const Scene& scene, const Pass& pass, const PassInputs& inputs,
+                                          bool skipping, BrickCombine combine) const {
+    const Renderer& renderer = *pass.renderer;
+    ShaderConstants constants = {{"u_interpolation", int(scene.interpolation)},
+                                 {"u_has_tf", inputs.tf ? 1 : 0},
+                                 {"u_layer", pass.layer ? 1 : 0},
+                                 {"u_clip_plane", pass.clip ? 1 : 0},
+                                 {"u_clip_plane_count", int(std::min(scene.clipPlanes.size(), kMaxClipPlanes))},
+                                 {"u_skipping", skipping ? 1 : 0},
+                                 {"u_count_samples", countingSamples_ ? 1 : 0},
+                                 {"u_bricked", combine != BrickCombine::None ? 1 : 0},
+                                 {"u_brick_combine", int(combine)}};
+    for (const ParameterSpec& p : renderer.parameters())
+        if (p.type == ParameterType::Bool) constants["u_" + p.name] = pass.values.at(p.name) != 0.0 ? 1 : 0;
+    // The widget count makes a stage's loop over the widgets one with a
+    // constant bound: it unrolls, and each widget's uniforms are read
+    // directly instead of gathered per pixel (bonsai tf2d at 512x512 on
+    // llvmpipe: 1.4-1.6 s to 0.8-0.9 s a frame, the same images). Adding or
+    // removing a widget compiles again; moving one does not.
+    if (renderer.needsTransferFunction2D()) constants["u_tf2d_count"] = int(inputs.widgets.size());
+    sceneVolumes_->addConstants(scene, &constants);
+    return constants;
+}
+
 void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     const Renderer& renderer = *pass.renderer;
     const glm::dvec2 window = scene.window.value_or(volume_->valueRange());
@@ -377,9 +405,6 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
         inputs.widgets = scene.transferFunction2D->widgets();
     else if (renderer.needsTransferFunction2D())
         inputs.widgets = fallbackTransferFunction2D(window).widgets();
-    // Switches are baked into the program (see ShaderConstants): the
-    // interpolation, whether there is a transfer function, the pass's kind,
-    // every bool parameter and the number of 2D transfer-function widgets.
     // A label map and a second volume (scene_volumes.h): loaded, checked and
     // uploaded before the program is chosen, so that a bad file fails first.
     // (The other side of a cutting plane may be drawn by a renderer that
@@ -394,25 +419,8 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     // overshoot the values it reads: the bricks' ranges do not bound it.
     const bool skipping =
         scene.skipEmptySpace && !renderer.objectOrder() && !scene.fusion && !isCubic(scene.interpolation);
-    ShaderConstants constants = {{"u_interpolation", int(scene.interpolation)},
-                                 {"u_has_tf", inputs.tf ? 1 : 0},
-                                 {"u_layer", pass.layer ? 1 : 0},
-                                 {"u_clip_plane", pass.clip ? 1 : 0},
-                                 {"u_clip_plane_count", int(std::min(scene.clipPlanes.size(), kMaxClipPlanes))},
-                                 {"u_skipping", skipping ? 1 : 0},
-                                 {"u_count_samples", countingSamples_ ? 1 : 0},
-                                 {"u_bricked", combine != BrickCombine::None ? 1 : 0},
-                                 {"u_brick_combine", int(combine)}};
-    for (const ParameterSpec& p : renderer.parameters())
-        if (p.type == ParameterType::Bool) constants["u_" + p.name] = pass.values.at(p.name) != 0.0 ? 1 : 0;
-    // The number of 2D transfer-function widgets too: a stage's loop over
-    // them then has a constant bound and unrolls, and each widget's
-    // uniforms are read directly instead of gathered per pixel (bonsai tf2d
-    // at 512x512 on llvmpipe: 1.5-1.9 s to 0.9-1.0 s a frame, the same
-    // images). Adding or removing a widget compiles again; moving one does not.
-    if (renderer.needsTransferFunction2D()) constants["u_tf2d_count"] = int(inputs.widgets.size());
-    sceneVolumes_->addConstants(scene, &constants);
     const bool countByUniform = countingByUniform_ && combine == BrickCombine::None;
+    ShaderConstants constants = switchesFor(scene, pass, inputs, skipping, combine);
     if (countByUniform) constants.erase("u_count_samples");
     const ShaderProgram& prog = program(renderer.vertexShader(), renderer.fragmentShader(), constants);
     lastRenderSources_.clear();

@@ -165,14 +165,14 @@ const workbench = {
     requestAnimationFrame(wait);
   },
 
-  // Compiler lines name files as stage/file:line; a line of the open file
-  // selects that line in the editor when clicked.
   // The line of the open file a compiler's line names, or 0.
   lineOfOpenFile(message) {
     const m = message.match(/([\w./-]+):(\d+)/);
     return m && m[1].endsWith(this.stage + '/' + this.file) ? Number(m[2]) : 0;
   },
 
+  // Compiler lines name files as stage/file:line; a line of the open file
+  // selects that line in the editor when clicked.
   showErrors(lines) {
     const list = $('errors');
     list.innerHTML = '';

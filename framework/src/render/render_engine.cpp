@@ -376,9 +376,12 @@ ShaderConstants RenderEngine::switchesFor(const Scene& scene, const Pass& pass, 
                                  {"u_clip_plane", pass.clip ? 1 : 0},
                                  {"u_clip_plane_count", int(std::min(scene.clipPlanes.size(), kMaxClipPlanes))},
                                  {"u_skipping", skipping ? 1 : 0},
-                                 {"u_count_samples", countingSamples_ ? 1 : 0},
                                  {"u_bricked", combine != BrickCombine::None ? 1 : 0},
                                  {"u_brick_combine", int(combine)}};
+    // Counting stays a uniform when asked (setCountingByUniform), except in
+    // a bricked render, whose counting draws use programs of their own.
+    if (!countingByUniform_ || combine != BrickCombine::None)
+        constants["u_count_samples"] = countingSamples_ ? 1 : 0;
     for (const ParameterSpec& p : renderer.parameters())
         if (p.type == ParameterType::Bool) constants["u_" + p.name] = pass.values.at(p.name) != 0.0 ? 1 : 0;
     // The widget count makes a stage's loop over the widgets one with a
@@ -419,9 +422,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     // overshoot the values it reads: the bricks' ranges do not bound it.
     const bool skipping =
         scene.skipEmptySpace && !renderer.objectOrder() && !scene.fusion && !isCubic(scene.interpolation);
-    const bool countByUniform = countingByUniform_ && combine == BrickCombine::None;
     ShaderConstants constants = switchesFor(scene, pass, inputs, skipping, combine);
-    if (countByUniform) constants.erase("u_count_samples");
     const ShaderProgram& prog = program(renderer.vertexShader(), renderer.fragmentShader(), constants);
     lastRenderSources_.clear();
     noteSources(prog);
@@ -453,7 +454,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
         bindPrecomputations(p, precomputations, pass.slot);
         sceneVolumes_->bind(p, scene, *volume_);
         if (skipping) bindBricks(p, renderer.emptySpaceRule(pass.values), table, inputs.widgets);
-        if (countByUniform) p.set("u_count_samples", countingSamples_ ? 1 : 0);
+        p.set("u_count_samples", countingSamples_ ? 1 : 0);  // ignored where switchesFor baked it
     };
     prepare(prog);
 

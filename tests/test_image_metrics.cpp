@@ -3,6 +3,7 @@
 // properties any correct SSIM has.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -105,6 +106,54 @@ TEST(ImageMetrics, SsimOfOneWindowMatchesTheFormula) {
     const SsimResult r = ssim(a, b);
     ASSERT_EQ(r.map.size(), 1u);
     EXPECT_NEAR(r.mean, want, 1e-6);
+}
+
+// Every position of the map, against the formula with a window of w x h
+// placed there (2-D Gaussian weights, variances about the means): the map is
+// row by row, position (x0, y0) the window's corner. Images larger than the
+// window in both axes, and one smaller than it in x (the window clips).
+TEST(ImageMetrics, SsimMapMatchesTheFormulaAtEveryPosition) {
+    const auto formula = [](const Image& a, const Image& b, int x0, int y0, int ww, int wh) {
+        std::vector<double> w(std::size_t(ww) * wh);
+        double wsum = 0.0, value = 0.0;
+        for (int k = 0; k < ww * wh; ++k) {
+            const double dx = k % ww - (ww - 1) / 2.0, dy = k / ww - (wh - 1) / 2.0;
+            wsum += w[std::size_t(k)] = std::exp(-(dx * dx + dy * dy) / (2 * 1.5 * 1.5));
+        }
+        for (int c = 0; c < 3; ++c) {
+            double ma = 0, mb = 0, va = 0, vb = 0, cov = 0;
+            for (int k = 0; k < ww * wh; ++k) {
+                ma += w[std::size_t(k)] / wsum * a.at(x0 + k % ww, y0 + k / ww)[c];
+                mb += w[std::size_t(k)] / wsum * b.at(x0 + k % ww, y0 + k / ww)[c];
+            }
+            for (int k = 0; k < ww * wh; ++k) {
+                const double da = a.at(x0 + k % ww, y0 + k / ww)[c] - ma, db = b.at(x0 + k % ww, y0 + k / ww)[c] - mb;
+                va += w[std::size_t(k)] / wsum * da * da, vb += w[std::size_t(k)] / wsum * db * db;
+                cov += w[std::size_t(k)] / wsum * da * db;
+            }
+            value += (2 * ma * mb + 1e-4) * (2 * cov + 9e-4) / ((ma * ma + mb * mb + 1e-4) * (va + vb + 9e-4)) / 3.0;
+        }
+        return value;
+    };
+    for (const auto& [w, h] : {std::pair{23, 17}, std::pair{7, 14}}) {
+        const Image a = noise(w, h, 11), b = noise(w, h, 12);
+        Image c = a;  // a with smooth changes: SSIM well away from 0
+        for (auto& v : c.rgba) v = std::clamp(v * 0.8f + 0.1f, 0.0f, 1.0f);
+        for (const Image* other : std::initializer_list<const Image*>{&b, &c}) {
+            const SsimResult r = ssim(a, *other);
+            const int ww = std::min(11, w), wh = std::min(11, h);
+            ASSERT_EQ(r.mapWidth, w - ww + 1);
+            ASSERT_EQ(r.mapHeight, h - wh + 1);
+            double sum = 0.0;
+            for (int y0 = 0; y0 < r.mapHeight; ++y0)
+                for (int x0 = 0; x0 < r.mapWidth; ++x0) {
+                    const double want = formula(a, *other, x0, y0, ww, wh);
+                    sum += want;
+                    ASSERT_NEAR(r.map[std::size_t(y0) * r.mapWidth + x0], want, 1e-6) << w << "x" << h << " at " << x0 << "," << y0;
+                }
+            EXPECT_NEAR(r.mean, sum / double(r.map.size()), 1e-9);
+        }
+    }
 }
 
 TEST(ImageMetrics, SsimPropertiesOnNoise) {

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "support/gl_fixture.h"
+#include "voxlab_gl.h"
 #include "voxlab/shader.h"
 #include "voxlab/scene.h"
 #include "voxlab/render_engine.h"
@@ -134,6 +135,52 @@ TEST_F(GlTest, ARayValueStagesEntryShaderIsMadeFromTheTemplate) {
     const PreprocessedShader s = lib.preprocess("renderers/minip.frag");
     EXPECT_NE(s.text.find("return undefined_thing;"), std::string::npos);
     fs::remove_all(root);
+}
+
+// On llvmpipe a fragment shader's main() is renamed and called from a main()
+// that may discard (so that the driver compiles it once, see shader.cpp).
+// The shader must mean what it says: an early return from main, a function
+// whose name starts with "main", and every pixel written exactly.
+TEST_F(GlTest, AnEntryShaderMeansWhatItSaysWhateverTheDriver) {
+    const int n = 8;
+    GLuint texture = 0, fbo = 0, vao = 0;
+    glGenTextures(1, &texture);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, n, 0, GL_RGBA, GL_FLOAT, nullptr);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+    ASSERT_EQ(glCheckFramebufferStatus(GL_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
+    ShaderLibrary lib({});
+    lib.addGenerated("t.vert", "#version 330 core\nvoid main() {\n"
+                               "    vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);\n"
+                               "    gl_Position = vec4(p, 0.0, 1.0);\n}\n");
+    lib.addGenerated("t.frag", "#version 330 core\nout vec4 colour;\nuniform float u_half;\n"
+                               "vec4 main_colour() { return vec4(0.25, 0.5, 0.75, 0.125); }\n"
+                               "void main(void) {\n    colour = main_colour();\n"
+                               "    if (gl_FragCoord.x < u_half) return;\n    colour.r = 1.0;\n}\n");
+    {
+        ShaderProgram prog(lib, "t.vert", "t.frag");
+        prog.use();
+        prog.set("u_half", float(n) / 2.0f);
+        glViewport(0, 0, n, n);
+        glDisable(GL_BLEND);
+        glGenVertexArrays(1, &vao);
+        glBindVertexArray(vao);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        std::vector<float> got(std::size_t(n) * n * 4, -1.0f);
+        glReadPixels(0, 0, n, n, GL_RGBA, GL_FLOAT, got.data());
+        checkGlError("the test's draw");
+        for (std::size_t i = 0; i < got.size(); ++i) {
+            const int x = int(i / 4) % n;
+            const float want[4] = {x < n / 2 ? 0.25f : 1.0f, 0.5f, 0.75f, 0.125f};
+            ASSERT_EQ(got[i], want[i % 4]) << "pixel " << i / 4 << ", channel " << i % 4;
+        }
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &texture);
 }
 
 TEST(ShaderLibrary, LogMappingHandlesMesaAndNvidiaFormats) {

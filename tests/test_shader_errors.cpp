@@ -137,8 +137,9 @@ TEST_F(GlTest, ARayValueStagesEntryShaderIsMadeFromTheTemplate) {
     fs::remove_all(root);
 }
 
-// On llvmpipe a fragment shader's main() is renamed and called from a main()
-// that may discard (so that the driver compiles it once, see shader.cpp).
+// With setCompileOnce, on llvmpipe a fragment shader's main() is renamed and
+// called from a main() that may discard (so that the driver compiles it once,
+// see shader.cpp).
 // The shader must mean what it says: an early return from main, a function
 // whose name starts with "main", and every pixel written exactly.
 TEST_F(GlTest, AnEntryShaderMeansWhatItSaysWhateverTheDriver) {
@@ -152,6 +153,7 @@ TEST_F(GlTest, AnEntryShaderMeansWhatItSaysWhateverTheDriver) {
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
     ASSERT_EQ(glCheckFramebufferStatus(GL_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
     ShaderLibrary lib({});
+    lib.setCompileOnce(true);
     lib.addGenerated("t.vert", "#version 330 core\nvoid main() {\n"
                                "    vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);\n"
                                "    gl_Position = vec4(p, 0.0, 1.0);\n}\n");

@@ -131,6 +131,7 @@ int gradeWorkerCommand(int argc, char** argv) {
     std::map<std::string, Volume> volumes;
     RenderEngine engine(implementation);
     engine.setCountingByUniform(true);  // the runaway-loop check reuses the render's program
+    engine.setCompileOnce(true);  // a scene's program draws once or twice: compiling is most of its time
     renderScenes(manifest, volumes, engine, out);
     for (const GradedCheck& check : manifest.checks) {
         try {

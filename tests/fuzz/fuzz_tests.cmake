@@ -3,13 +3,17 @@
 # and registers their short runs with CTest, label `fuzz`:
 #   fuzz_NAME         NAME's seeds plus VOXLAB_FUZZ_CTEST_RUNS executions in all
 #                     (fixed seed, so the same inputs every time); fails on a finding;
+#   fuzz_NAME_long    VOXLAB_FUZZ_CTEST_LONG_RUNS executions from another fixed
+#                     seed, labels `fuzz` and `heavy` (so CI runs it, and the
+#                     default test run stays within its few minutes);
 #   fuzz_NAME_canary  the harness's self-test: a planted exception must be
 #                     reported as a finding.
 # Nothing happens when clang++ cannot link a libFuzzer program (or Python 3 is
 # missing): the g++ build and its tests are unchanged. -DVOXLAB_FUZZ=OFF turns
 # it off by hand. Long runs: tools/fuzz.sh.
 option(VOXLAB_FUZZ "Build and test the libFuzzer targets (tests/fuzz/) when clang++ is installed" ON)
-set(VOXLAB_FUZZ_CTEST_RUNS 5000 CACHE STRING "Executions per fuzz target in its CTest run")
+set(VOXLAB_FUZZ_CTEST_RUNS 2000 CACHE STRING "Executions per fuzz target in its default CTest run")
+set(VOXLAB_FUZZ_CTEST_LONG_RUNS 20000 CACHE STRING "Executions per fuzz target in its heavy CTest run")
 if(NOT VOXLAB_FUZZ)
   return()
 endif()
@@ -57,8 +61,9 @@ ExternalProject_Add(voxlab_fuzzers
   INSTALL_COMMAND "")
 
 # fuzz_dicom forks a child per input, as loadDicom does in production (about
-# 30 executions/s instead of thousands): fewer executions keep it near 10 s.
-set(VOXLAB_FUZZ_CTEST_RUNS_dicom 300)
+# 30 executions/s instead of thousands): fewer executions keep it short.
+set(VOXLAB_FUZZ_CTEST_RUNS_dicom 100)
+set(VOXLAB_FUZZ_CTEST_LONG_RUNS_dicom 1000)
 
 set(runner ${CMAKE_CURRENT_LIST_DIR}/run_fuzzer.sh)
 foreach(name ${VOXLAB_FUZZ_TARGETS})
@@ -70,6 +75,15 @@ foreach(name ${VOXLAB_FUZZ_TARGETS})
     COMMAND ${runner} ${fuzz_bin}/fuzz_${name} ${fuzz_bin}/corpus/${name} ${runs}
             -seed=1 -max_total_time=120)
   set_tests_properties(fuzz_${name} PROPERTIES LABELS fuzz TIMEOUT 300)
+
+  set(long_runs ${VOXLAB_FUZZ_CTEST_LONG_RUNS})
+  if(DEFINED VOXLAB_FUZZ_CTEST_LONG_RUNS_${name} AND VOXLAB_FUZZ_CTEST_LONG_RUNS_${name} LESS long_runs)
+    set(long_runs ${VOXLAB_FUZZ_CTEST_LONG_RUNS_${name}})
+  endif()
+  add_test(NAME fuzz_${name}_long
+    COMMAND ${runner} ${fuzz_bin}/fuzz_${name} ${fuzz_bin}/corpus/${name} ${long_runs}
+            -seed=2 -max_total_time=240)
+  set_tests_properties(fuzz_${name}_long PROPERTIES LABELS "fuzz;heavy" TIMEOUT 400)
 
   add_test(NAME fuzz_${name}_canary
     COMMAND ${runner} ${fuzz_bin}/fuzz_${name} ${fuzz_bin}/corpus/${name} 100 -seed=1)

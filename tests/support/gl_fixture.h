@@ -23,7 +23,10 @@ public:
         // implementation root (a student's work, or a deliberately broken
         // copy of reference/); by default the reference solution.
         const char* impl = std::getenv("VOXLAB_IMPLEMENTATION");
-        if (!engine_) engine_ = std::make_unique<RenderEngine>(impl ? impl : "");
+        if (!engine_) {
+            engine_ = std::make_unique<RenderEngine>(impl ? impl : "");
+            engine_->setCompileOnce(true);  // as the grader compiles (most tests draw a program once)
+        }
     }
     static RenderEngine& engine() { return *engine_; }
 

@@ -123,6 +123,9 @@ public:
     // The grader's runaway-loop check uses it: on llvmpipe a compile costs
     // more than a 128x128 render. The images are the same either way.
     void setCountingByUniform(bool on) { countingByUniform_ = on; }
+    // Fewer compiles at a small cost in speed (ShaderLibrary::setCompileOnce):
+    // for the grading worker and the tests, which draw each program a few times.
+    void setCompileOnce(bool on) { library_.setCompileOnce(on); }
 
     // Bricked rendering (voxlab/volume_bricks.h): the GPU memory the volume's
     // textures may take unless a scene says otherwise ("gpu_memory"): what

@@ -166,8 +166,11 @@ unsigned compileStage(GLenum stage, const PreprocessedShader& src) {
 // once for whole 64x64 tiles, once for tiles that a triangle's edge crosses.
 // A shader that may discard is compiled once, and its edge version serves
 // every tile. Compiling is most of a grading run's first render of a scene
-// (docs/grading.md), so on llvmpipe the entry shader's main() is renamed and
-// called from a main() whose discard never happens: its uniform is never set.
+// (docs/grading.md), so with ShaderLibrary::setCompileOnce on llvmpipe the
+// entry shader's main() is renamed and called from a main() whose discard
+// never happens: its uniform is never set. Not always: a shader that may
+// discard runs a few per cent slower (bonsai MIP at 512², 122 against 117 ms),
+// which matters more to the viewer than one compile.
 // (Blending src*1 + dst*0 instead was tried: llvmpipe computes it as
 // dst + (src - dst), off by one unit in the last place wherever the target
 // held something.) Other drivers get the shader as written.
@@ -307,7 +310,7 @@ ShaderProgram::ShaderProgram(const ShaderLibrary& library, const std::string& ve
     const GLuint v = compileStage(GL_VERTEX_SHADER, vs);
     GLuint f = 0;
     try {
-        f = compileStage(GL_FRAGMENT_SHADER, onSoftwareRasterizer() ? compiledOnceOnLlvmpipe(fs) : fs);
+        f = compileStage(GL_FRAGMENT_SHADER, library.compileOnce() && onSoftwareRasterizer() ? compiledOnceOnLlvmpipe(fs) : fs);
     } catch (...) {
         glDeleteShader(v);
         throw;

@@ -399,7 +399,8 @@ TEST_F(ViewerWindow, AClipPlaneHandleDragsThePlaneAlongItsNormal) {
 }
 
 // Levels of detail: bonsai (256^3) moves at its 128^3 level (the mean of
-// each 2x2x2 block), at up to the window's size and twice the step,
+// each 2x2x2 block), at up to the window's size and twice the step, read
+// with the GPU's filtering in place of the scene's trilinear,
 // and the full level comes back once the mouse rests; tooth (1.6 million
 // voxels) is small enough to move at full level, reduced as before. The
 // coarse image is the same picture: near the full image, not blank.
@@ -419,7 +420,7 @@ TEST_F(ViewerWindow, MovingDrawsTheCoarseLevelAndRestDrawsTheVolume) {
     const std::size_t bonsai = r.out.find("drag: ");
     ASSERT_NE(bonsai, std::string::npos) << r.out;
     const std::string first = r.out.substr(bonsai, r.out.find('\n', bonsai) - bonsai);
-    EXPECT_NE(first.find(", level 1, step 1:"), std::string::npos) << first;
+    EXPECT_NE(first.find(", level 1, GPU filtering, step 1:"), std::string::npos) << first;
     EXPECT_NE(first.find("idle, full quality 640x400"), std::string::npos) << first;
     const std::size_t tooth = r.out.find("drag: ", bonsai + 1);
     ASSERT_NE(tooth, std::string::npos) << r.out;

@@ -67,8 +67,8 @@ void statusLine(const State& s, ImDrawList* fg, ImVec2 size, float scale) {
     char quality[96] = "";
     if (s.coarseShown && s.coarseVolume) {
         const glm::ivec3 d = s.coarseVolume->dims();
-        std::snprintf(quality, sizeof quality, "  moving: level %d of the pyramid (%dx%dx%d)", s.coarseLevel, d.x, d.y,
-                      d.z);
+        std::snprintf(quality, sizeof quality, "  moving: level %d of the pyramid (%dx%dx%d)%s", s.coarseLevel, d.x, d.y,
+                      d.z, coarseFiltering(s.scene).c_str());
     } else if (s.interactive && s.refineStep == 0)
         std::snprintf(quality, sizeof quality, "  moving: reduced size, double step");
     else if (s.interactive) std::snprintf(quality, sizeof quality, "  refining %d/%d", s.refineStep, s.refineSteps);

@@ -31,7 +31,7 @@ namespace voxlab::viewer {
 namespace {
 
 constexpr auto kSettle = std::chrono::milliseconds(250);  // idle time before full quality
-constexpr double kInteractiveMs = 90.0;                    // render budget while the mouse is busy
+constexpr double kInteractiveMs = 80.0;  // what a render aims at while the mouse is busy (10 frames/s with the rest)
 // The coarse level's size: at most about this many voxels (bonsai's 256^3
 // moves at 128^3, a 1024^3 volume at 128^3).
 constexpr double kCoarseVoxels = double(1 << 22);
@@ -41,8 +41,11 @@ bool isSceneFile(const std::string& path) {
 }
 
 // The scene one side renders: the shared scene with that side's renderer.
-// `doubleStep`: twice the step (a reduced image of the full level).
-Scene sideScene(const State& s, const Side& side, int width, int height, bool doubleStep) {
+// `doubleStep`: twice the step (while moving). `coarse`: drawn from the
+// coarse level, which reads between voxels with the GPU's filtering: a
+// preview while moving (the status line says so), at about half the time
+// per sample of the sampling stage's eight reads.
+Scene sideScene(const State& s, const Side& side, int width, int height, bool doubleStep, bool coarse) {
     Scene scene = s.scene;
     if (!side.renderer.empty() && side.renderer != scene.renderer) {
         scene.renderer = side.renderer;
@@ -51,6 +54,7 @@ Scene sideScene(const State& s, const Side& side, int width, int height, bool do
     scene.width = width;
     scene.height = height;
     if (doubleStep) scene.step = std::min(kMaxStep, scene.step * 2.0);
+    if (coarse && !coarseFiltering(scene).empty()) scene.interpolation = Interpolation::Hardware;
     return scene;
 }
 
@@ -117,6 +121,10 @@ void reloadShaders(State& s) {
     s.dirty = true;
 }
 
+std::string coarseFiltering(const Scene& scene) {
+    return scene.interpolation == Interpolation::Nearest ? "" : ", GPU filtering";
+}
+
 const RenderEngine& shownEngine(const State& s, const Side& side) {
     return s.coarseShown && side.coarse ? *side.coarse : *side.engine;
 }
@@ -171,15 +179,20 @@ std::string presetOf(const Scene& scene, const Volume& volume) {
     return "";
 }
 
-// Hold about 10 frames/s while the mouse is busy: shrink the moving image
-// when it renders too slowly, grow it back when there is room (the full
-// level: from half to an eighth of the window's size on each side; the
-// coarse level: from the whole window down to an eighth).
+// Hold about 10 frames/s while the mouse is busy: scale the moving image's
+// sides by the square root of render time over the aim (the time goes with
+// the pixels), growing at most 25 % a frame, and leave it alone within 10 %
+// of the aim, where frame times jitter (the full level: from half to an
+// eighth of the window's size on each side; the coarse level: from the whole
+// window down to an eighth). An earlier rule grew the image only below half
+// the budget, and left it wherever it landed between half and all of it:
+// bonsai composite moved at 60 ms a frame and a smaller image than it could.
 static void adaptReduction(State& s, bool coarse) {
     double& r = coarse ? s.coarseReduction : s.reduction;
     const double largest = coarse ? 1.0 : 2.0;
-    if (s.renderMs > kInteractiveMs) r = std::min(8.0, r * std::sqrt(s.renderMs / kInteractiveMs));
-    else if (s.renderMs < 0.5 * kInteractiveMs) r = std::max(largest, r / 1.2);
+    const double ratio = s.renderMs / kInteractiveMs;
+    if (ratio > 1.1) r = std::min(8.0, r * std::sqrt(ratio));
+    else if (ratio < 0.9) r = std::max(largest, r / std::min(1.25, std::sqrt(1.0 / std::max(ratio, 1e-3))));
 }
 
 void renderFrame(State& s) {
@@ -231,9 +244,9 @@ void renderFrame(State& s) {
     if (coarse) prepareCoarse(s);
     const Volume& shown = coarse ? *s.coarseVolume : *s.volume;
     const auto t0 = Clock::now();
-    const Scene mainScene = sideScene(s, s.main, w, h, dragging);
+    const Scene mainScene = sideScene(s, s.main, w, h, dragging, coarse);
     Scene otherScene;
-    if (s.split != SplitMode::Off) otherScene = sideScene(s, s.other, w, h, dragging);
+    if (s.split != SplitMode::Off) otherScene = sideScene(s, s.other, w, h, dragging, coarse);
     s.samplesShown =
         s.showSamples && samplesCountable(mainScene) && (s.split == SplitMode::Off || samplesCountable(otherScene));
     s.samplesTaken = renderSide(s.main, mainScene, s.samplesShown, coarse);

@@ -186,7 +186,9 @@ ScriptRunner::Progress ScriptRunner::drag(State& s) {
         char size[64];
         std::snprintf(size, sizeof size, "%dx%d", s.imageWidth, s.imageHeight);
         if (s.interactive) dragSize_ = size;
-        if (s.interactive) dragLevel_ = s.coarseShown && s.coarseVolume ? "level " + std::to_string(s.coarseLevel) : "";
+        if (s.interactive)
+            dragLevel_ = s.coarseShown && s.coarseVolume
+                             ? "level " + std::to_string(s.coarseLevel) + coarseFiltering(s.scene) : "";
         orbitCamera(&s.scene.camera, s.volume->extent(), dragDx_, dragDy_, s.fbWidth, s.fbHeight);
         s.lastInput = Clock::now();
         s.dirty = true;

@@ -31,7 +31,7 @@ private:
     bool settling_ = false;
     double dragDx_ = 0, dragDy_ = 0;
     std::vector<double> dragTimes_;
-    std::string dragLevel_;  // the coarse level the drag showed ("level 1"), or ""
+    std::string dragLevel_;  // the coarse level the drag showed ("level 1, GPU filtering"), or ""
     int refinements_ = 0;  // the last refinement step seen while settling
     std::string dragSize_;
 };

@@ -180,6 +180,10 @@ void resetCoarseLevel(State& s);
 void reloadShaders(State& s);
 // The engine whose image the side shows now (the coarse one while moving).
 const RenderEngine& shownEngine(const State& s, const Side& side);
+// What the coarse level shows while moving, after "level N": ", GPU filtering"
+// when it reads between voxels with the GPU's filtering instead of the scene's
+// interpolation (see sideScene), else "".
+std::string coarseFiltering(const Scene& scene);
 void renderFrame(State& s);          // renders what is dirty, at the right quality
 void presentFrame(State& s);         // draws the images into the window
 void saveWindowScreenshot(int width, int height, const std::string& path);

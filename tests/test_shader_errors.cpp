@@ -10,6 +10,7 @@
 
 #include "support/gl_fixture.h"
 #include "voxlab_gl.h"
+#include "voxlab/gl_context.h"
 #include "voxlab/shader.h"
 #include "voxlab/scene.h"
 #include "voxlab/render_engine.h"
@@ -163,6 +164,12 @@ TEST_F(GlTest, AnEntryShaderMeansWhatItSaysWhateverTheDriver) {
                                "    if (gl_FragCoord.x < u_half) return;\n    colour.r = 1.0;\n}\n");
     {
         ShaderProgram prog(lib, "t.vert", "t.frag");
+        // The wrapper's uniform is live exactly where the wrapper was applied.
+        const bool llvmpipe = currentGlRenderer().find("llvmpipe") != std::string::npos;
+        EXPECT_EQ(prog.location("voxlab_never_set") >= 0, llvmpipe) << currentGlRenderer();
+        ShaderLibrary asWritten = lib;
+        asWritten.setCompileOnce(false);
+        EXPECT_LT(ShaderProgram(asWritten, "t.vert", "t.frag").location("voxlab_never_set"), 0);
         prog.use();
         prog.set("u_half", float(n) / 2.0f);
         glViewport(0, 0, n, n);

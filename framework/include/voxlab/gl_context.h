@@ -29,6 +29,11 @@ protected:
     std::string kind_;
 };
 
+// The current context's GL_RENDERER ("llvmpipe (LLVM 15.0.6, 256 bits)",
+// "NVIDIA GeForce ..."), or "" without one; for choices that depend on the
+// driver, such as a software rasterizer's memory budget.
+std::string currentGlRenderer();
+
 enum class HeadlessBackend { Auto, OSMesa, EGL };
 
 // "auto" (default), "osmesa" or "egl"; throws voxlab::Error otherwise.

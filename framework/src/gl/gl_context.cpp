@@ -60,6 +60,11 @@ void GlContext::loadFunctions(const char* kind) {
                     std::to_string(minor) + " found, 3.3 core or newer is needed");
 }
 
+std::string currentGlRenderer() {
+    const GLubyte* s = glGetString(GL_RENDERER);
+    return s ? std::string(reinterpret_cast<const char*>(s)) : std::string();
+}
+
 std::string GlContext::description() const {
     auto str = [](GLenum name) {
         const GLubyte* s = glGetString(name);

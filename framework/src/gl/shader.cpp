@@ -12,6 +12,7 @@
 #include <sstream>
 #include <sys/stat.h>
 
+#include "voxlab/gl_context.h"
 #include "voxlab/scene.h"
 #include "voxlab_gl.h"
 
@@ -174,11 +175,6 @@ unsigned compileStage(GLenum stage, const PreprocessedShader& src) {
 // (Blending src*1 + dst*0 instead was tried: llvmpipe computes it as
 // dst + (src - dst), off by one unit in the last place wherever the target
 // held something.) Other drivers get the shader as written.
-bool onSoftwareRasterizer() {
-    const GLubyte* renderer = glGetString(GL_RENDERER);
-    return renderer && std::strstr(reinterpret_cast<const char*>(renderer), "llvmpipe");
-}
-
 PreprocessedShader compiledOnceOnLlvmpipe(PreprocessedShader fs) {
     static const std::regex entry(R"(\bvoid\s+main\s*\(\s*(void)?\s*\))");
     const std::size_t firstLine = fs.text.find('\n');
@@ -310,7 +306,9 @@ ShaderProgram::ShaderProgram(const ShaderLibrary& library, const std::string& ve
     const GLuint v = compileStage(GL_VERTEX_SHADER, vs);
     GLuint f = 0;
     try {
-        f = compileStage(GL_FRAGMENT_SHADER, library.compileOnce() && onSoftwareRasterizer() ? compiledOnceOnLlvmpipe(fs) : fs);
+        f = compileStage(GL_FRAGMENT_SHADER, library.compileOnce() && currentGlRenderer().find("llvmpipe") != std::string::npos
+                                                ? compiledOnceOnLlvmpipe(fs)
+                                                : fs);
     } catch (...) {
         glDeleteShader(v);
         throw;

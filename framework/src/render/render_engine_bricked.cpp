@@ -19,6 +19,7 @@
 #include "engine_internal.h"
 #include "voxlab/camera.h"
 #include "voxlab/error.h"
+#include "voxlab/gl_context.h"
 #include "voxlab/render_engine.h"
 #include "volume_textures.h"
 #include "voxlab_gl.h"
@@ -71,8 +72,7 @@ std::size_t driverGpuMemoryBudget() {
         glGetIntegerv(kAtiTextureFreeMemory, kib);
         if (kib[0] > 0) return std::size_t(kib[0]) * 1024 / 4 * 3;
     }
-    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    const std::string name = renderer ? renderer : "";
+    const std::string name = currentGlRenderer();
     const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
     if (name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos) {
         const std::size_t software = std::size_t(256) << 20;

@@ -40,6 +40,10 @@ bool isSceneFile(const std::string& path) {
     return path.size() > 5 && path.substr(path.size() - 5) == ".json";
 }
 
+// Whether the coarse level reads between voxels with the GPU's filtering
+// instead of the scene's interpolation: all but nearest-neighbour.
+bool coarseFiltersOnGpu(const Scene& scene) { return scene.interpolation != Interpolation::Nearest; }
+
 // The scene one side renders: the shared scene with that side's renderer.
 // `doubleStep`: twice the step (while moving). `coarse`: drawn from the
 // coarse level, which reads between voxels with the GPU's filtering: a
@@ -54,7 +58,7 @@ Scene sideScene(const State& s, const Side& side, int width, int height, bool do
     scene.width = width;
     scene.height = height;
     if (doubleStep) scene.step = std::min(kMaxStep, scene.step * 2.0);
-    if (coarse && !coarseFiltering(scene).empty()) scene.interpolation = Interpolation::Hardware;
+    if (coarse && coarseFiltersOnGpu(scene)) scene.interpolation = Interpolation::Hardware;
     return scene;
 }
 
@@ -122,7 +126,7 @@ void reloadShaders(State& s) {
 }
 
 std::string coarseFiltering(const Scene& scene) {
-    return scene.interpolation == Interpolation::Nearest ? "" : ", GPU filtering";
+    return coarseFiltersOnGpu(scene) ? ", GPU filtering" : "";
 }
 
 const RenderEngine& shownEngine(const State& s, const Side& side) {

@@ -22,6 +22,7 @@
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -369,6 +370,9 @@ ChildResult runChild(const std::vector<std::string>& argv, const ChildLimits& li
         becomeWorker(p, limits, out[1], results[1], status[1], 0);
     }
     if (!limits.isolate) setpgid(pid, pid);  // also here, so that a kill cannot race the child's own call
+    // Readable when the child exits. It is this process's child, so the pid
+    // cannot be reused before it is waited for.
+    const int exitFd = int(syscall(SYS_pidfd_open, pid, 0));
     close(out[1]);
     close(status[1]);
     if (results[1] >= 0) close(results[1]);
@@ -405,8 +409,13 @@ ChildResult runChild(const std::vector<std::string>& argv, const ChildLimits& li
         }
         // Descendants of a non-isolated child may hold the pipes open.
         if (exited && std::chrono::duration<double>(now - exitedAt).count() > 1.0) break;
-        struct pollfd fds[2] = {{outOpen ? out[0] : -1, POLLIN, 0}, {resultsOpen ? results[0] : -1, POLLIN, 0}};
-        if (poll(fds, 2, int(std::clamp(left, 0.0, 0.1) * 1000.0) + 1) > 0) {
+        // The child's pidfd wakes the poll when it exits; without one (a
+        // kernel before 5.3), a short wait once the pipes are closed.
+        struct pollfd fds[3] = {{outOpen ? out[0] : -1, POLLIN, 0},
+                                {resultsOpen ? results[0] : -1, POLLIN, 0},
+                                {exited ? -1 : exitFd, POLLIN, 0}};
+        const double wait = exitFd < 0 && !outOpen && !resultsOpen ? 0.005 : 0.1;
+        if (poll(fds, 3, int(std::clamp(left, 0.0, wait) * 1000.0) + 1) > 0) {
             if (fds[0].revents) outOpen = drain(out[0], result.output, limits.outputBytes, nullptr);
             if (fds[1].revents)
                 resultsOpen = drain(results[0], result.results, limits.resultsBytes, &result.resultsTruncated);
@@ -423,6 +432,7 @@ ChildResult runChild(const std::vector<std::string>& argv, const ChildLimits& li
     }
     close(out[0]);
     if (results[0] >= 0) close(results[0]);
+    if (exitFd >= 0) close(exitFd);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!result.timedOut) {
         if (WIFEXITED(waitStatus)) result.exitCode = WEXITSTATUS(waitStatus);

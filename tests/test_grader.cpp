@@ -15,6 +15,7 @@
 #include "voxlab/grader.h"
 #include "voxlab/grading.h"
 #include "voxlab/scene.h"
+#include "voxlab/stage_library.h"
 #include "support/expected_outputs.h"
 #include "support/run_command.h"
 
@@ -198,6 +199,41 @@ TEST_F(Grader, HangsCrashesAndCompileErrorsAreReportedInBoundedTime) {
     EXPECT_NE(crash["message"].get<std::string>().find(how), std::string::npos) << crash["message"];
 
     EXPECT_EQ(fingerprint(kSource / "reference"), referenceBefore) << "grading changed reference/";
+}
+
+// Stage libraries are built with the standard and GLM headers precompiled
+// (framework/stage_library/stage_prelude.h). A file that configures GLM
+// before including it (swizzles here) means something else with those
+// headers already read: it must be built as written, and pass.
+TEST_F(Grader, AStageFileThatConfiguresGlmFirstIsBuiltAsWritten) {
+    const fs::path root = scratch("glm_first");
+    const fs::path sub = mutatedCopy(root / "submission", "texslice2d/slice_axis.cpp",
+                                     "glm::abs(viewDirection)", "glm::abs(viewDirection.xyz())");
+    const std::string text = readFile(sub / "texslice2d/slice_axis.cpp");
+    std::ofstream(sub / "texslice2d/slice_axis.cpp") << "#define GLM_FORCE_SWIZZLE\n" << text;
+    GraderOptions o = options();
+    o.stages = {"texslice2d"};
+    const json report = grade(sub, "glm_first", o);
+    const json& s = stage(report, "texslice2d");
+    EXPECT_EQ(s["status"], "passed") << s["message"] << "\n" << s.value("log", "");
+    EXPECT_DOUBLE_EQ(s["score"].get<double>(), s["max_score"].get<double>());
+}
+
+// The prelude is worth having only if the compiler takes the .gch: built
+// with other flags than the stage build's, it is silently parsed instead.
+// -H marks a precompiled header it used with "!".
+TEST(StagePrelude, TheCompilerUsesThePrecompiledHeader) {
+    const std::string prelude = stagePreludeHeader();
+    ASSERT_FALSE(prelude.empty()) << "the build made no precompiled stage prelude";
+    const fs::path out = scratch("prelude") / "splat.so";
+    std::string command;
+    for (const std::string& word : stageLibraryBuildCommand({(kSource / "reference/splat/splat_order.cpp").string()},
+                                                            out.string(), prelude))
+        command += "'" + word + "' ";
+    const CommandResult r = runShell(command + "-H");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("! " + prelude + ".gch"), std::string::npos) << r.err.substr(0, 2000);
+    EXPECT_TRUE(fs::exists(out));
 }
 
 TEST_F(Grader, ASubmissionCannotWriteOutsideItsReportFolder) {

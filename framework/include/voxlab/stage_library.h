@@ -76,11 +76,16 @@ std::vector<std::string> loadStageLibrary(const std::string& path);
 // object is gone (the command below then compiles the source).
 std::string stageExportsObject();
 
+// framework/stage_library/stage_prelude.h as precompiled when the framework
+// was built (the .gch beside it), or "" when that is gone.
+std::string stagePreludeHeader();
+
 // The command that builds a stage library from `sources` (paths relative to
 // `workingDir`, where it is run) into `output`: the compiler this framework
 // was built with, its headers, position-independent and self-bound
-// (-Bsymbolic), so that calls inside the library stay inside it.
+// (-Bsymbolic), so that calls inside the library stay inside it. With a
+// `prelude` (stagePreludeHeader()), that header is read first, precompiled.
 std::vector<std::string> stageLibraryBuildCommand(const std::vector<std::string>& sources,
-                                                  const std::string& output);
+                                                  const std::string& output, const std::string& prelude = "");
 
 }  // namespace voxlab

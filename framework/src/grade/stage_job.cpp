@@ -168,11 +168,18 @@ bool buildLibrary(const std::vector<std::string>& sources, const std::string& ro
                   RunOutcome& outcome) {
     std::vector<std::string> readable = {root, projectRoot() + "/framework"};
     if (const std::string exports = stageExportsObject(); !exports.empty()) readable.push_back(exports);
+    const std::string prelude = stagePreludeHeader();
+    if (!prelude.empty()) readable.push_back(fs::path(prelude).parent_path().string());
     ChildLimits limits = sandboxLimits(120.0, readable);
     limits.workingDir = root;
     limits.writable = {lib.string()};
     limits.environment["TMPDIR"] = lib.string();
-    const ChildResult built = runChild(stageLibraryBuildCommand(sources, (lib / "stage_library.so").string()), limits);
+    const std::string library = (lib / "stage_library.so").string();
+    ChildResult built = runChild(stageLibraryBuildCommand(sources, library, prelude), limits);
+    // The prelude only saves parsing: files that do not build with it are
+    // built as written, and that build's messages are the student's.
+    if (!built.succeeded() && !prelude.empty() && !built.timedOut)
+        built = runChild(stageLibraryBuildCommand(sources, library), limits);
     if (built.succeeded()) return true;
     outcome.compiled = false;
     outcome.compileLog = built.output.empty() ? "the C++ compiler " + built.describe(limits.seconds) : built.output;

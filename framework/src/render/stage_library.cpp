@@ -112,11 +112,24 @@ std::string stageExportsObject() {
     return "";
 }
 
+std::string stagePreludeHeader() {
+#ifdef VOXLAB_STAGE_PRELUDE
+    struct stat st;
+    if (stat(VOXLAB_STAGE_PRELUDE, &st) == 0 && S_ISREG(st.st_mode) &&
+        stat(VOXLAB_STAGE_PRELUDE ".gch", &st) == 0 && S_ISREG(st.st_mode))
+        return VOXLAB_STAGE_PRELUDE;
+#endif
+    return "";
+}
+
+// The flags are also framework/CMakeLists.txt's for the exports object and
+// the prelude: a precompiled header built with others is not used.
 std::vector<std::string> stageLibraryBuildCommand(const std::vector<std::string>& sources,
-                                                  const std::string& output) {
+                                                  const std::string& output, const std::string& prelude) {
     std::vector<std::string> cmd = {VOXLAB_CXX_COMPILER, "-std=c++17", "-O1", "-fPIC", "-shared",
                                     "-Wl,-Bsymbolic", "-DGLM_FORCE_CXX17",
                                     "-I" VOXLAB_SOURCE_DIR "/framework/include"};
+    if (!prelude.empty()) cmd.insert(cmd.end(), {"-include", prelude});
     cmd.insert(cmd.end(), sources.begin(), sources.end());
     const std::string prebuilt = stageExportsObject();
     cmd.push_back(prebuilt.empty() ? VOXLAB_SOURCE_DIR "/framework/stage_library/stage_exports.cpp" : prebuilt);

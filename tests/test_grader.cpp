@@ -397,6 +397,11 @@ TEST(GradingManifest, FunctionsAndPrerequisitesMustExist) {
     EXPECT_NE(message([&] { stageManifests(root.string()); }).find("requires: no stage 'sampling'"), std::string::npos);
     std::ofstream(root / "mip" / "grading.json") << R"({"title": "x", "order": 1, "functions": ["mip_ray"]})";
     EXPECT_EQ(message([&] { stageManifests(root.string()); }), "no error");
+    // Only the whole name followed by "(" counts: not inside a longer name.
+    std::ofstream(root / "mip" / "mip.glsl") << "float xmip_ray(Ray r) { return mip_ray_x(r) + mip_ray; }\n";
+    EXPECT_NE(message([&] { stageManifests(root.string()); }).find("'mip_ray' is not defined"), std::string::npos);
+    std::ofstream(root / "mip" / "mip.glsl") << "float xmip_ray(Ray r);\nfloat mip_ray \n  (Ray ray) { return 0.0; }\n";
+    EXPECT_EQ(message([&] { stageManifests(root.string()); }), "no error");
 }
 
 TEST(GradingCredit, AFailedItemEarnsAtMostHalfFallingToZeroAtThreeTimesTheThreshold) {

@@ -2,12 +2,12 @@
 #include "voxlab/grading.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <regex>
 
 #include <nlohmann/json.hpp>
 
@@ -219,6 +219,25 @@ StageManifest loadStageManifest(const std::string& root, const std::string& stag
     return m;
 }
 
+namespace {
+
+// Whether `name` occurs in `text` as a whole word followed by "(" (spaces
+// allowed between): a definition or a call. A scan, not std::regex: the
+// grader asks it for every function of every stage several times at each
+// start (16 ms a time with std::regex, 2.7 ms with the scan).
+bool namesACall(const std::string& text, const std::string& name) {
+    const auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (std::size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1)) {
+        if (at > 0 && word(text[at - 1])) continue;
+        std::size_t next = at + name.size();
+        while (next < text.size() && std::isspace(static_cast<unsigned char>(text[next]))) ++next;
+        if (next < text.size() && text[next] == '(') return true;
+    }
+    return false;
+}
+
+}  // namespace
+
 void checkStageFunctions(const StageManifest& m, const std::string& root) {
     const std::filesystem::path folder = std::filesystem::path(root) / m.stage;
     const std::string path = (folder / "grading.json").string();
@@ -229,7 +248,7 @@ void checkStageFunctions(const StageManifest& m, const std::string& root) {
         sources += json_text::readCappedText(in, (folder / f).string()) + "\n";
     }
     for (const std::string& f : m.functions)
-        if (!std::regex_search(sources, std::regex("\\b" + f + "\\s*\\(")))
+        if (!namesACall(sources, f))
             throw Error(path + ": functions: '" + f + "' is not defined in the stage's files");
 }
 

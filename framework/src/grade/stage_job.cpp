@@ -170,19 +170,23 @@ bool buildLibrary(const std::vector<std::string>& sources, const std::string& ro
     if (const std::string exports = stageExportsObject(); !exports.empty()) readable.push_back(exports);
     const std::string prelude = stagePreludeHeader();
     if (!prelude.empty()) readable.push_back(fs::path(prelude).parent_path().string());
-    ChildLimits limits = sandboxLimits(120.0, readable);
+    constexpr double kBuildSeconds = 120.0;
+    ChildLimits limits = sandboxLimits(kBuildSeconds, readable);
     limits.workingDir = root;
     limits.writable = {lib.string()};
     limits.environment["TMPDIR"] = lib.string();
     const std::string library = (lib / "stage_library.so").string();
     ChildResult built = runChild(stageLibraryBuildCommand(sources, library, prelude), limits);
     // The prelude only saves parsing: files that do not build with it are
-    // built as written, and that build's messages are the student's.
-    if (!built.succeeded() && !prelude.empty() && !built.timedOut)
+    // built as written, and that build's messages are the student's. The
+    // two builds share the one time limit.
+    if (!built.succeeded() && !prelude.empty() && !built.timedOut && built.seconds < limits.seconds - 1.0) {
+        limits.seconds -= built.seconds;
         built = runChild(stageLibraryBuildCommand(sources, library), limits);
+    }
     if (built.succeeded()) return true;
     outcome.compiled = false;
-    outcome.compileLog = built.output.empty() ? "the C++ compiler " + built.describe(limits.seconds) : built.output;
+    outcome.compileLog = built.output.empty() ? "the C++ compiler " + built.describe(kBuildSeconds) : built.output;
     return false;
 }
 

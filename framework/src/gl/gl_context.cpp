@@ -60,17 +60,20 @@ void GlContext::loadFunctions(const char* kind) {
                     std::to_string(minor) + " found, 3.3 core or newer is needed");
 }
 
-std::string currentGlRenderer() {
-    const GLubyte* s = glGetString(GL_RENDERER);
-    return s ? std::string(reinterpret_cast<const char*>(s)) : std::string();
+namespace {
+
+// A string of the current context (glGetString), or `missing` without one.
+std::string glString(GLenum name, const char* missing) {
+    const GLubyte* s = glGetString(name);
+    return s ? std::string(reinterpret_cast<const char*>(s)) : std::string(missing);
 }
 
+}  // namespace
+
+std::string currentGlRenderer() { return glString(GL_RENDERER, ""); }
+
 std::string GlContext::description() const {
-    auto str = [](GLenum name) {
-        const GLubyte* s = glGetString(name);
-        return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
-    };
-    return kind_ + ": " + str(GL_RENDERER) + ", OpenGL " + str(GL_VERSION);
+    return kind_ + ": " + glString(GL_RENDERER, "?") + ", OpenGL " + glString(GL_VERSION, "?");
 }
 
 #ifdef VOXLAB_HAVE_OSMESA

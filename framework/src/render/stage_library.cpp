@@ -104,20 +104,27 @@ std::vector<std::string> overrideStageFunctions(const CppStages& found) {
     return names;
 }
 
+namespace {
+
+// What the framework's build made beside it (a path fixed at build time),
+// while it is still there.
+bool builtFileExists(const std::string& path) {
+    struct stat st;
+    return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+}  // namespace
+
 std::string stageExportsObject() {
 #ifdef VOXLAB_STAGE_EXPORTS_OBJECT
-    struct stat st;
-    if (stat(VOXLAB_STAGE_EXPORTS_OBJECT, &st) == 0 && S_ISREG(st.st_mode)) return VOXLAB_STAGE_EXPORTS_OBJECT;
+    if (builtFileExists(VOXLAB_STAGE_EXPORTS_OBJECT)) return VOXLAB_STAGE_EXPORTS_OBJECT;
 #endif
     return "";
 }
 
 std::string stagePreludeHeader() {
 #ifdef VOXLAB_STAGE_PRELUDE
-    struct stat st;
-    if (stat(VOXLAB_STAGE_PRELUDE, &st) == 0 && S_ISREG(st.st_mode) &&
-        stat(VOXLAB_STAGE_PRELUDE ".gch", &st) == 0 && S_ISREG(st.st_mode))
-        return VOXLAB_STAGE_PRELUDE;
+    if (builtFileExists(VOXLAB_STAGE_PRELUDE) && builtFileExists(VOXLAB_STAGE_PRELUDE ".gch")) return VOXLAB_STAGE_PRELUDE;
 #endif
     return "";
 }

@@ -66,24 +66,23 @@ set(VOXLAB_FUZZ_CTEST_RUNS_dicom 100)
 set(VOXLAB_FUZZ_CTEST_LONG_RUNS_dicom 1000)
 
 set(runner ${CMAKE_CURRENT_LIST_DIR}/run_fuzzer.sh)
-foreach(name ${VOXLAB_FUZZ_TARGETS})
-  set(runs ${VOXLAB_FUZZ_CTEST_RUNS})
-  if(DEFINED VOXLAB_FUZZ_CTEST_RUNS_${name} AND VOXLAB_FUZZ_CTEST_RUNS_${name} LESS runs)
-    set(runs ${VOXLAB_FUZZ_CTEST_RUNS_${name}})
+# Registers fuzz_NAME<suffix>: NAME's seeds plus the executions that the
+# variable named `runs_var` says (or its _NAME variant where that is fewer),
+# from libFuzzer seed `seed`, within `max_time` seconds.
+function(voxlab_add_fuzz_run name suffix runs_var seed max_time labels timeout)
+  set(runs ${${runs_var}})
+  if(DEFINED ${runs_var}_${name} AND ${runs_var}_${name} LESS runs)
+    set(runs ${${runs_var}_${name}})
   endif()
-  add_test(NAME fuzz_${name}
+  add_test(NAME fuzz_${name}${suffix}
     COMMAND ${runner} ${fuzz_bin}/fuzz_${name} ${fuzz_bin}/corpus/${name} ${runs}
-            -seed=1 -max_total_time=120)
-  set_tests_properties(fuzz_${name} PROPERTIES LABELS fuzz TIMEOUT 300)
+            -seed=${seed} -max_total_time=${max_time})
+  set_tests_properties(fuzz_${name}${suffix} PROPERTIES LABELS "${labels}" TIMEOUT ${timeout})
+endfunction()
 
-  set(long_runs ${VOXLAB_FUZZ_CTEST_LONG_RUNS})
-  if(DEFINED VOXLAB_FUZZ_CTEST_LONG_RUNS_${name} AND VOXLAB_FUZZ_CTEST_LONG_RUNS_${name} LESS long_runs)
-    set(long_runs ${VOXLAB_FUZZ_CTEST_LONG_RUNS_${name}})
-  endif()
-  add_test(NAME fuzz_${name}_long
-    COMMAND ${runner} ${fuzz_bin}/fuzz_${name} ${fuzz_bin}/corpus/${name} ${long_runs}
-            -seed=2 -max_total_time=240)
-  set_tests_properties(fuzz_${name}_long PROPERTIES LABELS "fuzz;heavy" TIMEOUT 400)
+foreach(name ${VOXLAB_FUZZ_TARGETS})
+  voxlab_add_fuzz_run(${name} "" VOXLAB_FUZZ_CTEST_RUNS 1 120 fuzz 300)
+  voxlab_add_fuzz_run(${name} _long VOXLAB_FUZZ_CTEST_LONG_RUNS 2 240 "fuzz;heavy" 400)
 
   add_test(NAME fuzz_${name}_canary
     COMMAND ${runner} ${fuzz_bin}/fuzz_${name} ${fuzz_bin}/corpus/${name} 100 -seed=1)

@@ -49,7 +49,7 @@ esac
 # writes the DICOM series the tests load (tests/dicom/make_series.py);
 # glslang-tools checks every shader as GLSL ES 3.00 too (tests/test_glsl_es.cpp).
 packages=(cmake make g++ pkg-config python3 libglm-dev libstb-dev libosmesa6-dev libegl-dev zlib1g-dev
-          nlohmann-json3-dev khronos-api libgdcm-dev)
+          nlohmann-json3-dev khronos-api libgdcm-dev libseccomp-dev)
 [ "$mode" = --grader ] || packages+=(libglfw3-dev libimgui-dev libgtest-dev xvfb xauth fonts-dejavu-core
                                      python3-pydicom glslang-tools)
 missing=()

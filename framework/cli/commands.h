@@ -19,7 +19,6 @@ int compareCommand(int argc, char** argv);
 int gradeCommand(int argc, char** argv);
 int checkCommand(int argc, char** argv);
 int gradeWorkerCommand(int argc, char** argv);
-int stageHostCommand(int argc, char** argv);
 int benchCommand(int argc, char** argv);
 int meshCommand(int argc, char** argv);
 

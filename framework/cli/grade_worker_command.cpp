@@ -86,19 +86,8 @@ void renderScenes(const StageManifest& manifest, std::map<std::string, Volume>& 
     }
 }
 
-std::string selfExecutable() {
-    std::error_code ec;
-    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (ec) throw Error("grade-worker: cannot find its own executable (/proc/self/exe)");
-    return self.string();
-}
 
 }  // namespace
-
-int stageHostCommand(int argc, char** argv) {
-    if (argc != 3) throw Error("usage: voxlab stage-host LIBRARY (started by voxlab grade-worker)");
-    return runStageHost(argv[2]);
-}
 
 int gradeWorkerCommand(int argc, char** argv) {
     const std::vector<OptionSpec> specs = {
@@ -120,7 +109,7 @@ int gradeWorkerCommand(int argc, char** argv) {
         // The graded stage's C++ answers from a process of its own (stage_host.h).
         clearStageFunctions(manifest.cppFunctions);
         if (args.get("graded-library"))
-            useStageHost(selfExecutable(), *args.get("graded-library"), manifest.cppFunctions);
+            useStageHost(stageHostProgram(), *args.get("graded-library"), manifest.cppFunctions);
     } else if (args.get("graded-library")) {
         loadStageLibrary(*args.get("graded-library"));
     }

@@ -48,7 +48,6 @@ int main(int argc, char** argv) {
         if (command == "mesh") return meshCommand(argc, argv);
         if (command == "check") return checkCommand(argc, argv);
         if (command == "grade-worker") return gradeWorkerCommand(argc, argv);
-        if (command == "stage-host") return stageHostCommand(argc, argv);
         if (command == "help" || command == "--help" || command == "-h") {
             usage(std::cout);
             return 0;

@@ -2,15 +2,17 @@
 //
 // When the grader grades a C++ stage, the submission's stage library is not
 // loaded into the worker (which renders, and holds the results channel and
-// the other stages' reference code). A stage host, `voxlab stage-host LIB`,
+// the other stages' reference code). A stage host, `voxlab-stage-host LIB`,
 // started by the worker, confines itself further (reads only its library
 // and the system's, writes nothing), then loads the library and answers
-// calls over a pipe. The worker points the graded stage's entries of
+// calls over a pipe. It is a program of its own, installed beside voxlab,
+// that holds no stage code: the voxlab executable links the reference's C++
+// stages in, and a library loaded into it could find them in memory. The worker points the graded stage's entries of
 // cppStages() at stubs that call the host. The stage's code thus cannot
 // write to the results channel, read what the worker holds, or change how
 // the framework renders: it can only answer the calls it is asked.
 //
-// Protocol (native byte order; both ends are this executable):
+// Protocol (native byte order; both ends are built from this tree):
 //   request   one byte, the function ('P' planeBoxPolygon, 'A' chooseSliceAxis,
 //             'C' cubeCase, 'X' edgeCrossing, 'S' splatOrder, 'W'
 //             factorShearWarp), then its arguments as doubles (10 for 'P', 3
@@ -47,11 +49,12 @@ public:
     using Error::Error;
 };
 
-// The host's side: serves calls on stdin/stdout until stdin closes.
-int runStageHost(const std::string& library);
+// voxlab-stage-host beside this executable; throws voxlab::Error naming
+// the path when it is missing.
+std::string stageHostProgram();
 
-// The worker's side: starts `voxlab` (this executable) as a stage host for
-// `library` and routes the named stage functions to it.
-void useStageHost(const std::string& voxlab, const std::string& library, const std::vector<std::string>& functions);
+// The worker's side: starts `host` (stageHostProgram()) for `library` and
+// routes the named stage functions to it.
+void useStageHost(const std::string& host, const std::string& library, const std::vector<std::string>& functions);
 
 }  // namespace voxlab

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 
 #ifndef SYS_landlock_create_ruleset
 #define SYS_landlock_create_ruleset 444
@@ -51,7 +52,9 @@ struct __attribute__((packed)) PathBeneathAttr {
 // Rights that make sense on a file (the kernel refuses folder rights there).
 constexpr std::uint64_t kFileRights = kExecute | kWriteFile | kReadFile | kTruncate;
 
-bool allow(int ruleset, const char* path, std::uint64_t rights) {
+// `rights` beneath `path` (a folder), or those of them that make sense on
+// a file; `folderRights` instead when `path` is a folder and they are given.
+bool allow(int ruleset, const char* path, std::uint64_t rights, std::uint64_t folderRights = ~0ULL) {
     const int fd = open(path, O_PATH | O_CLOEXEC);
     if (fd < 0) return true;  // a path that is not there needs no rule
     struct stat st;
@@ -61,7 +64,7 @@ bool allow(int ruleset, const char* path, std::uint64_t rights) {
     }
     PathBeneathAttr rule;
     std::memset(&rule, 0, sizeof rule);
-    rule.allowedAccess = S_ISDIR(st.st_mode) ? rights : (rights & kFileRights);
+    rule.allowedAccess = S_ISDIR(st.st_mode) ? (rights & folderRights) : (rights & kFileRights);
     rule.parentFd = fd;
     const bool ok = rule.allowedAccess == 0 ||
                     syscall(SYS_landlock_add_rule, ruleset, kRulePathBeneath, &rule, 0) == 0;
@@ -71,13 +74,27 @@ bool allow(int ruleset, const char* path, std::uint64_t rights) {
 
 }  // namespace
 
+std::vector<std::string> deviceFiles() {
+    std::vector<std::string> files;
+    for (const char* d : {"/dev/null", "/dev/zero", "/dev/random", "/dev/urandom"})
+        if (access(d, F_OK) == 0) files.push_back(d);
+    std::error_code ec;
+    if (std::filesystem::is_directory("/dev/dri", ec)) files.push_back("/dev/dri");
+    for (const char* folder : {"/dev/dri", "/dev"})
+        for (const auto& e : std::filesystem::directory_iterator(folder, ec)) {
+            const std::string name = e.path().filename().string();
+            if (name.rfind("renderD", 0) == 0 || name.rfind("nvidia", 0) == 0) files.push_back(e.path().string());
+        }
+    return files;
+}
+
 int landlockAbi() {
     const long abi = syscall(SYS_landlock_create_ruleset, nullptr, 0, kCreateRulesetVersion);
     return abi < 0 ? 0 : int(abi);
 }
 
 unsigned restrictSelf(const std::vector<const char*>& readable, const std::vector<const char*>& writable,
-                      bool confineReads) {
+                      const std::vector<const char*>& devices, bool confineReads) {
     const int abi = landlockAbi();
     if (abi < 1) return 0;
     const std::uint64_t readRights = kExecute | kReadFile | kReadDir;
@@ -107,8 +124,10 @@ unsigned restrictSelf(const std::vector<const char*>& readable, const std::vecto
     for (const char* path : writable) ok = ok && allow(ruleset, path, handled);
     if (confineReads)
         for (const char* path : readable) ok = ok && allow(ruleset, path, readRights);
-    // Device files: /dev/null for writing, a GPU's render node.
-    ok = ok && allow(ruleset, "/dev", (kWriteFile | readRights) & handled);
+    // Device files, each by name: reading and writing (a folder among them,
+    // /dev/dri, only listed). /dev itself is not listable.
+    for (const char* device : devices)
+        ok = ok && allow(ruleset, device, (kWriteFile | kReadFile | kReadDir) & handled, kReadDir);
     if (ok && prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) == 0 && syscall(SYS_landlock_restrict_self, ruleset, 0) == 0) {
         close(ruleset);
         return layers;

@@ -14,6 +14,7 @@
 // confined as far as the kernel allows on any Linux.
 #pragma once
 
+#include <string>
 #include <vector>
 
 namespace voxlab::sandbox {
@@ -29,11 +30,18 @@ enum LandlockLayers : unsigned {
 // The ABI version the kernel offers; 0 when Landlock is unavailable.
 int landlockAbi();
 
-// Restricts the calling process. `readable` and `writable` are NUL-terminated
-// paths prepared before fork; when `confineReads` is false reading stays
-// allowed everywhere. Only async-signal-safe calls: it runs between fork and
-// exec. Returns the layers in force (0 when Landlock is unavailable).
+// The device files a sandboxed process may open, for reading and writing:
+// /dev/null, zero, random and urandom, and a GPU's render nodes
+// (/dev/dri/renderD*, /dev/nvidia*) with /dev/dri listable. No block device,
+// no terminal, no /dev/kmsg. Found on disk (call it before fork).
+std::vector<std::string> deviceFiles();
+
+// Restricts the calling process. `readable`, `writable` and `devices`
+// (deviceFiles()) are NUL-terminated paths prepared before fork; when
+// `confineReads` is false reading stays allowed everywhere. Only
+// async-signal-safe calls: it runs between fork and exec. Returns the
+// layers in force (0 when Landlock is unavailable).
 unsigned restrictSelf(const std::vector<const char*>& readable, const std::vector<const char*>& writable,
-                      bool confineReads);
+                      const std::vector<const char*>& devices, bool confineReads);
 
 }  // namespace voxlab::sandbox

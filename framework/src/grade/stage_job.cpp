@@ -5,16 +5,24 @@
 //   impl/<stage>/   the graded stage, only the manifest's files (and GLSL
 //                   helpers beside them) from the submission, each checked
 //                   to be a regular file under the size limit;
-//   impl/<other>/   the other stages' GLSL from the reference, so that one
-//                   mistake is not counted twice;
+//   impl/<other>/   the GLSL of the stages the manifest `requires` (and
+//                   theirs), from the reference, so that one mistake is
+//                   not counted twice; no other stage's code, which could
+//                   stand in for the graded one;
 //   task/<stage>/   the manifest and its scenes (no expected outputs);
-//   lib/            the stage libraries (the reference's C++ stages, the
-//                   submission's built from its named .cpp files).
+//   lib/build/      the submission's named .cpp files built into a stage
+//                   library, by a compiler that reads only the snapshot,
+//                   the framework's headers and the system, and writes only
+//                   there (temporary files in a size-capped tmpfs);
+//   lib/ref/        the reference's C++ stages, copied in after that build.
 // Plus shaders/, the datasets and the system. It writes nowhere: its results
-// come back through the results channel (worker_results.h).
+// come back through the results channel (worker_results.h). The build and
+// the run share one cgroup: one process count and one memory cap for
+// everything the stage starts.
 #include "stage_job.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -24,6 +32,7 @@
 #include <fstream>
 #include <thread>
 
+#include "stage_boundary.h"
 #include "voxlab/atomic_file.h"
 #include "voxlab/child_process.h"
 #include "voxlab/error.h"
@@ -115,16 +124,21 @@ void snapshotGradedStage(const StageRun& run, const StageManifest& manifest, con
     }
 }
 
-// The other stages' GLSL, from the reference.
+// From the reference, the GLSL of the stages `stage` requires and of those
+// the framework's shaders include (stage_boundary.h says what the graded
+// stage may use of them).
 void snapshotOtherStages(const std::string& referenceRoot, const std::string& stage, const fs::path& impl) {
+    std::vector<std::string> others = requiredStages(referenceRoot, stage);
+    for (const std::string& s : frameworkStages(projectRoot() + "/shaders", referenceRoot))
+        if (s != stage && !std::count(others.begin(), others.end(), s)) others.push_back(s);
     std::error_code ec;
-    for (const auto& folder : fs::directory_iterator(referenceRoot, ec)) {
-        if (!folder.is_directory() || folder.path().filename() == stage) continue;
-        for (const auto& entry : fs::directory_iterator(folder.path(), ec)) {
+    for (const std::string& other : others) {
+        const fs::path folder = fs::path(referenceRoot) / other;
+        for (const auto& entry : fs::directory_iterator(folder, ec)) {
             const std::string ext = entry.path().extension().string();
             if (!entry.is_regular_file() || (ext != ".glsl" && ext != ".frag" && ext != ".vert")) continue;
-            fs::create_directories(impl / folder.path().filename());
-            fs::copy_file(entry.path(), impl / folder.path().filename() / entry.path().filename());
+            fs::create_directories(impl / other);
+            fs::copy_file(entry.path(), impl / other / entry.path().filename());
         }
     }
 }
@@ -153,28 +167,53 @@ void copyTask(const std::string& manifestRoot, const StageManifest& manifest, bo
     }
 }
 
-ChildLimits sandboxLimits(double seconds, const std::vector<std::string>& readable) {
+ChildLimits sandboxLimits(double seconds, const std::vector<std::string>& readable, const ChildCgroup& cgroup) {
     ChildLimits limits;
     limits.isolate = true;
     limits.seconds = seconds;
     limits.readable = readable;
+    limits.cgroup = &cgroup;
     limits.environment["MESA_SHADER_CACHE_DISABLE"] = "true";
     return limits;
 }
 
-// Builds `sources` (relative to `root`) into lib/stage_library.so, itself
-// sandboxed: a compiler can be told to read any file (#include "/etc/...").
+// The programs the compiler driver runs besides itself, as the files they
+// resolve to (the assembler and the linker; cc1plus and collect2 live in
+// /usr/libexec, which every child may read).
+std::vector<std::string> toolchainPrograms() {
+    std::vector<std::string> found;
+    std::error_code ec;
+    for (const char* name : {"as", "ld", "ld.bfd", "ld.gold", "ld.lld"})
+        for (const char* dir : {"/usr/local/bin", "/usr/bin", "/usr/x86_64-linux-gnu/bin", "/usr/aarch64-linux-gnu/bin"}) {
+            const fs::path real = fs::canonical(fs::path(dir) / name, ec);
+            if (!ec && std::find(found.begin(), found.end(), real.string()) == found.end())
+                found.push_back(real.string());
+        }
+    return found;
+}
+
+// Builds `sources` (relative to `root`) into `lib`/stage_library.so, itself
+// sandboxed: a compiler can be told to read any file (#include "/etc/...",
+// an assembler's .incbin). It reads the snapshot, the framework's headers,
+// the prebuilt exports and prelude, and the system's toolchain; it writes
+// only `lib`, its temporary files into a size-capped tmpfs there, no file
+// over 64 MiB.
 bool buildLibrary(const std::vector<std::string>& sources, const std::string& root, const fs::path& lib,
-                  RunOutcome& outcome) {
-    std::vector<std::string> readable = {root, projectRoot() + "/framework"};
+                  const ChildCgroup& cgroup, RunOutcome& outcome) {
+    std::vector<std::string> readable = {root, projectRoot() + "/framework/include"};
     if (const std::string exports = stageExportsObject(); !exports.empty()) readable.push_back(exports);
     const std::string prelude = stagePreludeHeader();
-    if (!prelude.empty()) readable.push_back(fs::path(prelude).parent_path().string());
+    if (!prelude.empty()) readable.insert(readable.end(), {prelude, prelude + ".gch"});
+    for (const std::string& program : toolchainPrograms()) readable.push_back(program);
     constexpr double kBuildSeconds = 120.0;
-    ChildLimits limits = sandboxLimits(kBuildSeconds, readable);
+    ChildLimits limits = sandboxLimits(kBuildSeconds, readable, cgroup);
+    const fs::path scratch = lib / "tmp";
+    fs::create_directories(scratch);
     limits.workingDir = root;
     limits.writable = {lib.string()};
-    limits.environment["TMPDIR"] = lib.string();
+    limits.scratch = scratch.string();
+    limits.fileBytes = std::size_t(64) << 20;
+    limits.environment["TMPDIR"] = scratch.string();
     const std::string library = (lib / "stage_library.so").string();
     ChildResult built = runChild(stageLibraryBuildCommand(sources, library, prelude), limits);
     // The prelude only saves parsing: files that do not build with it are
@@ -184,9 +223,14 @@ bool buildLibrary(const std::vector<std::string>& sources, const std::string& ro
         limits.seconds -= built.seconds;
         built = runChild(stageLibraryBuildCommand(sources, library), limits);
     }
+    std::error_code ec;
+    fs::remove_all(scratch, ec);
     if (built.succeeded()) return true;
     outcome.compiled = false;
     outcome.compileLog = built.output.empty() ? "the C++ compiler " + built.describe(kBuildSeconds) : built.output;
+    if (built.outOfMemory || built.signal == SIGXFSZ)
+        outcome.compileLog += "\n(the build " + built.describe(kBuildSeconds) +
+                              (built.signal == SIGXFSZ ? ": it wrote a file over the 64 MiB limit)" : ")");
     return false;
 }
 
@@ -228,45 +272,36 @@ std::vector<std::string> dataFolders() {
     return folders;
 }
 
-}  // namespace
-
-RunOutcome runStage(const StageRun& run, const StageManifest& manifest, const GraderOptions& options) {
-    RunOutcome outcome;
-    const fs::path work = run.workDir, lib = work / "lib";
-    fs::remove_all(work);
-    fs::create_directories(lib);
-    copyTask(options.referenceRoot, manifest, options.hiddenScenes, work / "task");
-    std::string root = run.implementationRoot;
-    if (run.graded) {
-        root = (work / "impl").string();
-        snapshotGradedStage(run, manifest, work / "impl" / run.stage, outcome);
-        if (outcome.problemKind == "error") return outcome;
-        snapshotOtherStages(options.referenceRoot, run.stage, work / "impl");
-    }
-    outcome.stubs = unimplementedFunctions((fs::path(root) / run.stage).string());
-    if (!outcome.problem.empty()) return outcome;
-
+// The worker's command line, and the libraries it loads: the reference's
+// C++ stages (copied in after the submission's build, which never sees
+// them), then the submission's.
+std::vector<std::string> workerCommand(const StageRun& run, const std::string& root, const fs::path& work,
+                                       const GraderOptions& options, bool builtLibrary) {
     std::vector<std::string> worker = {voxlabExecutable(options), "grade-worker", "--stage", run.stage,
                                        "--manifest-root", (work / "task").string(), "--implementation", root};
-    // The reference's C++ stages first, then the submission's on top.
     const fs::path referenceLibrary = fs::path(options.expectedDir) / "reference_stages.so";
     if (fs::exists(referenceLibrary)) {
-        fs::copy_file(referenceLibrary, lib / "reference_stages.so");
-        worker.insert(worker.end(), {"--stage-library", (lib / "reference_stages.so").string()});
+        fs::create_directories(work / "lib/ref");
+        fs::copy_file(referenceLibrary, work / "lib/ref/reference_stages.so");
+        worker.insert(worker.end(), {"--stage-library", (work / "lib/ref/reference_stages.so").string()});
     }
     if (run.graded) worker.push_back("--graded");
-    const std::vector<std::string> sources = cppSources(run, manifest, root);
-    if (!sources.empty()) {
-        if (!buildLibrary(sources, root, lib, outcome)) return outcome;
-        worker.insert(worker.end(), {"--graded-library", (lib / "stage_library.so").string()});
-    }
+    if (builtLibrary) worker.insert(worker.end(), {"--graded-library", (work / "lib/build/stage_library.so").string()});
+    return worker;
+}
 
+// The worker's limits: it reads its snapshot, task and libraries, the
+// shaders and datasets, and runs the stage host; it writes nothing.
+ChildLimits workerLimits(const StageRun& run, const std::string& root, const fs::path& work,
+                         const GraderOptions& options, const ChildCgroup& cgroup) {
     std::vector<std::string> readable = dataFolders();
-    readable.insert(readable.end(), {root, (work / "task").string(), lib.string()});
+    readable.insert(readable.end(), {root, (work / "task").string(), (work / "lib").string()});
+    const std::string host = fs::path(voxlabExecutable(options)).parent_path() / "voxlab-stage-host";
+    if (fs::exists(host)) readable.push_back(host);
     // A self-check (the student's own tree on their own machine) borrows the
     // stages it lacks from reference/ where there is one; grading never does.
     if (!run.graded) readable.push_back(projectRoot() + "/reference");
-    ChildLimits limits = sandboxLimits(options.timeLimit, readable);
+    ChildLimits limits = sandboxLimits(options.timeLimit, readable, cgroup);
     limits.memoryBytes = options.memoryLimit;
     limits.fileBytes = std::size_t(256) << 20;  // Mesa keeps large textures in memfds, which this also caps
     limits.resultsBytes = std::size_t(64) << 20;
@@ -277,7 +312,40 @@ RunOutcome runStage(const StageRun& run, const StageManifest& manifest, const Gr
         const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
         limits.environment["LP_NUM_THREADS"] = std::to_string(std::max(1u, cores / unsigned(std::max(1, options.jobs))));
     }
-    const ChildResult result = runChild(worker, limits);
+    return limits;
+}
+
+}  // namespace
+
+RunOutcome runStage(const StageRun& run, const StageManifest& manifest, const GraderOptions& options) {
+    RunOutcome outcome;
+    const fs::path work = run.workDir;
+    fs::remove_all(work);
+    fs::create_directories(work / "lib/build");
+    copyTask(options.referenceRoot, manifest, options.hiddenScenes, work / "task");
+    std::string root = run.implementationRoot;
+    if (run.graded) {
+        root = (work / "impl").string();
+        snapshotGradedStage(run, manifest, work / "impl" / run.stage, outcome);
+        if (outcome.problemKind == "error") return outcome;
+        snapshotOtherStages(options.referenceRoot, run.stage, work / "impl");
+        const std::string crossed = checkStageBoundary(root, run.stage, requiredStages(options.referenceRoot, run.stage),
+                                                       options.referenceRoot, projectRoot() + "/shaders");
+        if (!crossed.empty()) {
+            outcome.compiled = false;
+            outcome.compileLog = crossed;
+            return outcome;
+        }
+    }
+    outcome.stubs = unimplementedFunctions((fs::path(root) / run.stage).string());
+    if (!outcome.problem.empty()) return outcome;
+
+    // One process count and one memory cap for the build and the run.
+    const ChildCgroup cgroup(kStageProcesses, options.memoryLimit);
+    const std::vector<std::string> sources = cppSources(run, manifest, root);
+    if (!sources.empty() && !buildLibrary(sources, root, work / "lib/build", cgroup, outcome)) return outcome;
+    const ChildLimits limits = workerLimits(run, root, work, options, cgroup);
+    const ChildResult result = runChild(workerCommand(run, root, work, options, !sources.empty()), limits);
     outcome.finished = result.succeeded();
     outcome.ended = result.describe(limits.seconds);
     outcome.output = result.output;

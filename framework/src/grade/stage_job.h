@@ -49,6 +49,9 @@ nlohmann::json scoreStage(const StageRun& run, const RunOutcome& outcome, const 
 // The executable that runs workers.
 std::string voxlabExecutable(const GraderOptions& options);
 
+// Processes and threads one stage may have at once, build and run together.
+constexpr int kStageProcesses = 64;
+
 // A stage file larger than this is refused (it is no shader).
 constexpr std::uintmax_t kMaxStageFileBytes = 1u << 20;
 

@@ -3,17 +3,26 @@
 // writes where it should not.
 #include <gtest/gtest.h>
 
+#include <errno.h>
+#include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
+#include <sys/socket.h>
+#include <sys/syscall.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <cstring>
 #include <fstream>
+#include <iostream>
 #include <thread>
 
 #include "voxlab/child_process.h"
 #include "voxlab/error.h"
+#include "support/in_child.h"
 #include "support/sandbox_probes.h"
 
 namespace voxlab::testing {
@@ -245,5 +254,154 @@ TEST(ChildIsolation, ResultsChannelIsFileDescriptorThree) {
     EXPECT_NE(r.output.find("done"), std::string::npos);
     EXPECT_EQ(shell("printf x >&3 || echo no-fd-3").output.find("no-fd-3") != std::string::npos, true);
 }
+
+// --- Default deny (issue 32): each attack a stage could mount, run by
+// tests/support/sandbox_attack.cpp inside the sandbox, and where it is
+// harmless also outside it, so that each test can fail. ---
+
+std::string attack(const std::vector<std::string>& args, ChildLimits limits = isolated()) {
+    std::vector<std::string> argv = {VOXLAB_SANDBOX_ATTACK};
+    argv.insert(argv.end(), args.begin(), args.end());
+    limits.readable.push_back(VOXLAB_SANDBOX_ATTACK);
+    return runChild(argv, limits).output;
+}
+
+bool root() { return geteuid() == 0; }
+
+TEST(ChildSandbox, HoldsNoCapabilityEvenAsRoot) {
+    const ChildResult r = runChild({VOXLAB_SANDBOX_ATTACK, "capabilities"}, isolated());
+    EXPECT_NE(r.output.find("capabilities: denied"), std::string::npos) << r.output;
+    EXPECT_TRUE(hasLayer(r, "no capabilities")) << r.output;
+    if (root()) EXPECT_NE(attack({"capabilities"}, {}).find("capabilities: allowed"), std::string::npos);
+}
+
+TEST(ChildSandbox, SystemCallsOffTheListFailWithEperm) {
+    char hostBefore[256] = {}, hostAfter[256] = {};
+    gethostname(hostBefore, sizeof hostBefore);
+    for (const char* a : {"keyring", "hostname", "nice", "fifo", "inet", "mount", "unshare", "clone-newuser", "bpf",
+                          "perf", "io_uring", "userfaultfd", "ptrace"})
+        EXPECT_NE(attack({a}).find(std::string(a) + ": denied (EPERM)"), std::string::npos) << attack({a});
+    gethostname(hostAfter, sizeof hostAfter);
+    EXPECT_STREQ(hostBefore, hostAfter);
+    // No key was left in this user's keyring (KEYCTL_SEARCH: ENOKEY).
+    EXPECT_EQ(syscall(SYS_keyctl, 10, -4, "user", "voxlab-hostile-key", 0), -1);
+    EXPECT_EQ(errno, ENOKEY);
+    EXPECT_NE(attack({"inet"}, {}).find("inet: allowed"), std::string::npos);  // the probe can tell
+    EXPECT_NE(attack({"io_uring"}, {}).find("io_uring: allowed"), std::string::npos);
+}
+
+TEST(ChildSandbox, OnlyHarmlessDevices) {
+    for (const char* a : {"blockdev", "kmsg"}) {
+        const std::string out = attack({a});
+        EXPECT_NE(out.find(std::string(a) + ": denied"), std::string::npos) << out;
+        EXPECT_EQ(out.find("opened"), std::string::npos) << out;
+    }
+    if (root()) {  // root outside the sandbox opens them (opened and closed, nothing read or written)
+        EXPECT_NE(attack({"kmsg"}, {}).find("kmsg: allowed"), std::string::npos);
+        const std::string block = attack({"blockdev"}, {});
+        if (block.find("denied (ENOENT)") == std::string::npos) EXPECT_NE(block.find("allowed"), std::string::npos);
+    }
+}
+
+TEST(ChildSandbox, NoUnixSocketOfTheMachine) {
+    const fs::path dir = freshFolder("agent");
+    const std::string path = (dir / "agent.sock").string();
+    const int server = socket(AF_UNIX, SOCK_STREAM, 0);
+    sockaddr_un addr{};
+    addr.sun_family = AF_UNIX;
+    std::strncpy(addr.sun_path, path.c_str(), sizeof addr.sun_path - 1);
+    ASSERT_EQ(bind(server, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+    listen(server, 4);
+    ChildLimits limits = isolated();
+    limits.readable.push_back(dir.string());  // even where the socket's folder is readable
+    EXPECT_NE(attack({"unix", path}, limits).find("unix: denied (EPERM)"), std::string::npos);
+    pollfd p = {server, POLLIN, 0};
+    EXPECT_EQ(poll(&p, 1, 200), 0) << "a connection arrived";
+    EXPECT_NE(attack({"unix", path}, {}).find("unix: allowed"), std::string::npos);  // the probe can tell
+    close(server);
+    fs::remove_all(dir);
+}
+
+TEST(ChildSandbox, TheEnvironmentIsAnAllowList) {
+    setenv("GRADER_API_TOKEN", "voxlab-secret-token", 1);
+    setenv("SSH_AUTH_SOCK", "/tmp/agent.sock", 1);
+    setenv("GALLIUM_DRIVER", "llvmpipe", 1);
+    ChildLimits limits = isolated();
+    limits.environment["VOXLAB_GIVEN"] = "yes";
+    EXPECT_NE(attack({"env", "GRADER_API_TOKEN"}, limits).find("=unset"), std::string::npos);
+    EXPECT_NE(attack({"env", "SSH_AUTH_SOCK"}, limits).find("=unset"), std::string::npos);
+    EXPECT_NE(attack({"env", "GALLIUM_DRIVER"}, limits).find("=llvmpipe"), std::string::npos);  // the GL's settings cross
+    EXPECT_NE(attack({"env", "VOXLAB_GIVEN"}, limits).find("=yes"), std::string::npos);
+    EXPECT_NE(attack({"env", "PATH"}, limits).find("=/usr/local/bin:/usr/bin:/bin"), std::string::npos);
+    EXPECT_NE(attack({"env", "GRADER_API_TOKEN"}, {}).find("=voxlab-secret-token"), std::string::npos);
+    unsetenv("GRADER_API_TOKEN");
+    unsetenv("SSH_AUTH_SOCK");
+    unsetenv("GALLIUM_DRIVER");
+}
+
+TEST(ChildSandbox, OneMemoryCapForEverythingItStarts) {
+    ChildLimits limits = isolated(30);
+    limits.memoryBytes = std::size_t(512) << 20;
+    const ChildResult memfd = runChild({VOXLAB_SANDBOX_ATTACK, "memfd", "2048"}, limits);
+    if (!hasLayer(memfd, "memory cgroup")) GTEST_SKIP() << "no memory cgroup here: " << memfd.output;
+    // A memfd's pages are no process's address space; the cgroup counts them.
+    EXPECT_EQ(memfd.output.find("held 2048 MiB"), std::string::npos) << memfd.output;
+    EXPECT_TRUE(memfd.outOfMemory) << memfd.output;
+    EXPECT_NE(memfd.describe(30).find("ran out of memory"), std::string::npos);
+    // Six children of 200 MiB each stay under a per-process cap of 512 MiB,
+    // not under one cap of 512 MiB for all of them.
+    const ChildResult kids = runChild({VOXLAB_SANDBOX_ATTACK, "children", "6", "200"}, limits);
+    EXPECT_EQ(kids.output.find("6 of 6"), std::string::npos) << kids.output;
+    EXPECT_TRUE(kids.outOfMemory) << kids.output;
+    limits.memoryBytes = std::size_t(2048) << 20;  // with room, they all run (the test can fail)
+    EXPECT_NE(runChild({VOXLAB_SANDBOX_ATTACK, "children", "6", "200"}, limits).output.find("6 of 6"),
+              std::string::npos);
+}
+
+TEST(ChildSandbox, WritesAreCappedInSizeAndTheScratchVanishes) {
+    const fs::path dir = freshFolder("scratch"), scratch = dir / "tmp";
+    fs::create_directories(scratch);
+    ChildLimits limits = isolated(30);
+    limits.writable = {dir.string()};
+    limits.scratch = scratch.string();
+    limits.scratchBytes = std::size_t(32) << 20;
+    const ChildResult inScratch = runChild({VOXLAB_SANDBOX_ATTACK, "write", (scratch / "big").string(), "100"}, limits);
+    if (!hasLayer(inScratch, "size-capped scratch (tmpfs)")) GTEST_SKIP() << "no mount namespace here";
+    EXPECT_NE(inScratch.output.find("wrote 3"), std::string::npos) << inScratch.output;  // 30-32 of 100 MiB
+    EXPECT_TRUE(fs::is_empty(scratch)) << "the scratch's files outlived the child";
+    limits.fileBytes = std::size_t(16) << 20;
+    const ChildResult outside = runChild({VOXLAB_SANDBOX_ATTACK, "write", (dir / "big").string(), "100"}, limits);
+    EXPECT_NE(outside.output.find("wrote 16 MiB"), std::string::npos) << outside.output;
+    EXPECT_EQ(fs::file_size(dir / "big"), std::uintmax_t(16) << 20);
+    fs::remove_all(dir);
+}
+
+// The same attacks by a grader that runs as a plain user: everything but
+// the cgroups (which need root or delegation) holds, and the report says
+// which layers are missing.
+TEST(ChildSandbox, AsAPlainUserToo) {
+    if (!root()) GTEST_SKIP() << "needs root to drop to a plain user";
+    const std::string got = messageInChild(
+        // (A process that changed its ids is not dumpable, and so may not
+        // write its own /proc/self/uid_map: a user's own process is.)
+        [] { return setgid(65534) == 0 && setuid(65534) == 0 && prctl(PR_SET_DUMPABLE, 1) == 0; },
+        [] {
+            const ChildResult r = runChild({VOXLAB_SANDBOX_ATTACK, "capabilities"}, isolated());
+            std::string out = r.output;
+            for (const char* a : {"keyring", "hostname", "inet", "mount", "unshare"}) out += attack({a});
+            out += "layers:";
+            for (const std::string& l : r.sandbox) out += " [" + l + "]";
+            out += "\nmissing:";
+            for (const std::string& l : r.sandboxMissing) out += " [" + l + "]";
+            return out;
+        });
+    std::cout << got << "\n";
+    EXPECT_NE(got.find("capabilities: denied"), std::string::npos) << got;
+    for (const char* a : {"keyring", "hostname", "inet", "mount", "unshare"})
+        EXPECT_NE(got.find(std::string(a) + ": denied (EPERM)"), std::string::npos) << got;
+    EXPECT_NE(got.find("[system-call allow-list (seccomp)]"), std::string::npos) << got;
+    EXPECT_NE(got.find("[memory cgroup]", got.find("missing:")), std::string::npos) << got;
+}
+
 }  // namespace
 }  // namespace voxlab::testing

@@ -292,6 +292,7 @@ std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, c
                        {"mode", options.shipped || !options.isolateStage ? "check" : "grade"},
                        {"against", options.shipped ? "shipped" : "reference"},
                        {"sandbox", sandboxLayers()},
+                       {"sandbox_missing", sandboxMissingLayers()},
                        {"elapsed_s", seconds[s]}};
         double score = 0.0, maxScore = 0.0;
         json graded = json::array();

@@ -386,6 +386,11 @@ std::string header(const json& results, const json& stages) {
         for (const json& layer : results["sandbox"])
             if (layer.is_string()) isolation += (isolation.empty() ? "" : ", ") + layer.get<std::string>();
     meta("Isolation", isolation.empty() ? "none on this machine" : isolation);
+    std::string missing;
+    if (results.contains("sandbox_missing") && results["sandbox_missing"].is_array())
+        for (const json& layer : results["sandbox_missing"])
+            if (layer.is_string()) missing += (missing.empty() ? "" : ", ") + layer.get<std::string>();
+    meta("Isolation missing here", missing);
     if (auto seconds = html::number(results, "elapsed_s")) meta("Time", html::formatSeconds(*seconds));
     out += "</dl></div>\n<div class=\"total\"><div class=\"total-score\">" +
            (score ? html::formatNumber(*score, 2) : std::string("\u2013"));

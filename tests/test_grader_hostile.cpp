@@ -11,8 +11,14 @@
 // that the attack really ran and the defence, not an accident, stopped it.
 #include <gtest/gtest.h>
 
+#include <poll.h>
+#include <sys/socket.h>
+#include <sys/syscall.h>
+#include <sys/un.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -68,7 +74,7 @@ public:
     static void TearDownTestSuite() { if (!std::getenv("VOXLAB_KEEP")) fs::remove_all(scratchRoot()); }
     static GraderOptions options() {
         GraderOptions o = referenceOptions();
-        o.stages = {"mip", "composite", "texslice3d"};
+        o.stages = {"mip", "composite", "texslice3d", "attenuated_mip"};
         o.jobs = 1;
         o.timeLimit = 20;
         return o;
@@ -80,7 +86,7 @@ public:
     // expected outputs itself, as `voxlab grade` does, instead of using the
     // suite's.
     json gradeAndCheck(const fs::path& submission, const std::string& stage, const std::string& token = "",
-                       bool renderExpected = false) {
+                       bool renderExpected = false, std::size_t memoryLimit = 0) {
         const fs::path report = scratch("report_" + stage) / "report";
         const fs::path canary = report.parent_path() / "canary";
         fs::create_directories(canary);
@@ -88,6 +94,7 @@ public:
         const std::string before = fingerprint(kSource / "reference") + fingerprint(submission) + fingerprint(canary);
         GraderOptions o = options();
         o.stages = {stage};
+        if (memoryLimit > 0) o.memoryLimit = memoryLimit;
         if (renderExpected) {
             o.shipped = false;
             o.expectedDir = (report.parent_path() / "expected").string();
@@ -341,6 +348,189 @@ TEST_F(HostileSubmissions, CppCannotForgeResultsEvenWithTheGoldenImages) {
     std::ofstream(sub / "texslice3d/proxy_geometry.cpp") << hostileCpp(attack);
     const json s = gradeAndCheck(sub, "texslice3d");
     EXPECT_EQ(s["score"].get<double>(), 0.0) << s.dump(1);
+}
+
+// --- Default deny: another stage's code, the compiled reference, the
+// machine, the grader's environment and resources out of reach. ---
+
+// A stage graded with another stage's reference in the same program could
+// call it: attenuated MIP with no attenuation is MIP (found scoring 10/10).
+TEST_F(HostileSubmissions, AnotherStagesReferenceCannotStandIn) {
+    const std::string head = "#ifndef VOXLAB_STAGE_MIP_GLSL\n#define VOXLAB_STAGE_MIP_GLSL\n#include \"voxlab/ray.glsl\"\n";
+    const std::pair<std::string, std::string> attacks[] = {
+        {"#include \"attenuated_mip/attenuated_mip.glsl\"\nfloat mip_ray(Ray ray) { return attenuated_mip_ray(ray); }\n",
+         "is stage attenuated_mip's file"},
+        // A stage the framework itself compiles in (volume.glsl includes cubic).
+        {"float mip_ray(Ray ray) { return sample_cubic(ray.origin); }\n", "sample_cubic() belongs to stage cubic"},
+        {"#define CALL(a, b) a##b\nfloat mip_ray(Ray ray) { return CALL(sample_, cubic)(ray.origin); }\n",
+         "token pasting"}};
+    for (const auto& [body, why] : attacks) {
+        fs::path sub = submissionWith("other_stage", "mip", "assignments");
+        std::ofstream(sub / "mip/mip.glsl") << head << body << "#endif\n";
+        const json s = gradeAndCheck(sub, "mip");
+        EXPECT_EQ(s["score"].get<double>(), 0.0) << body;
+        EXPECT_EQ(s["status"], "compile_error") << s["message"];
+        EXPECT_NE(report_.find(why), std::string::npos) << s["message"];
+    }
+    // A prerequisite is the stage's to use: attenuated MIP calls mip_ray().
+    fs::path honest = submissionWith("prerequisite", "attenuated_mip", "reference");
+    EXPECT_EQ(gradeAndCheck(honest, "attenuated_mip")["status"], "passed");
+}
+
+// The compiled reference: the voxlab binary links the reference's C++
+// stages in, and the grader loads them as a library. A build that embeds
+// either (.incbin) and calls into it was found scoring 10/10.
+TEST_F(HostileSubmissions, TheCompiledReferenceCannotBeEmbedded) {
+    const std::string binary = fs::canonical(VOXLAB_BINARY).string();
+    const std::string library = (fs::path(options().expectedDir) / "reference_stages.so").string();
+    std::ofstream(library) << "a stand-in for the compiled reference";  // wherever the grader keeps it
+    for (const std::string& target : {binary, library}) {
+        fs::path sub = submissionWith("incbin", "texslice3d", "assignments");
+        std::ofstream(sub / "texslice3d/proxy_geometry.cpp", std::ios::app)
+            << "asm(\".section .rodata\\n.incbin \\\"" << target << "\\\"\\n.previous\");\n";
+        const json s = gradeAndCheck(sub, "texslice3d");
+        EXPECT_EQ(s["score"].get<double>(), 0.0) << target;
+        EXPECT_EQ(s["status"], "compile_error") << target << ": " << s["message"];
+        EXPECT_NE(report_.find("incbin"), std::string::npos) << s["message"];
+        // Outside the sandbox the same file builds (the test can fail).
+        const CommandResult built = runShell("g++ -std=c++17 -c -I" + (kSource / "framework/include").string() + " " +
+                                             (sub / "texslice3d/proxy_geometry.cpp").string() + " -o /dev/null");
+        EXPECT_EQ(built.exitCode, 0) << built.err;
+    }
+    fs::remove(library);
+}
+
+// The stage host holds no stage code at all, so that a library loaded
+// into it cannot find the reference's functions in memory.
+TEST_F(HostileSubmissions, TheStageHostHoldsNoStageCode) {
+    const fs::path host = fs::path(VOXLAB_BINARY).parent_path() / "voxlab-stage-host";
+    ASSERT_TRUE(fs::exists(host));
+    const std::string hostSymbols = runShell("nm -C " + host.string()).out;
+    const std::string voxlabSymbols = runShell("nm -C " + std::string(VOXLAB_BINARY)).out;
+    for (const char* f : {"voxlab::planeBoxPolygon(", "voxlab::chooseSliceAxis(", "voxlab::cubeCase(",
+                          "voxlab::edgeCrossing(", "voxlab::splatOrder(", "voxlab::factorShearWarp("}) {
+        EXPECT_EQ(hostSymbols.find(f), std::string::npos) << f;
+        EXPECT_NE(voxlabSymbols.find(f), std::string::npos) << f;  // where it is (the test can fail)
+    }
+}
+
+// A build may not use unbounded memory or disk: an assembler told to
+// embed 1.5 GB (the largest system library the compiler may read, over
+// and over; a device such as /dev/zero it refuses to embed).
+TEST_F(HostileSubmissions, TheBuildIsCappedInMemoryAndDisk) {
+    fs::path big;
+    for (const auto& e : fs::directory_iterator("/usr/lib/x86_64-linux-gnu"))
+        if (e.is_regular_file() && (big.empty() || e.file_size() > fs::file_size(big))) big = e.path();
+    ASSERT_FALSE(big.empty());
+    const std::size_t copies = std::size_t(1500) / std::max<std::size_t>(1, fs::file_size(big) >> 20) + 1;
+    fs::path sub = submissionWith("huge_build", "texslice3d", "assignments");
+    std::ofstream out(sub / "texslice3d/proxy_geometry.cpp", std::ios::app);
+    for (std::size_t i = 0; i < copies; ++i)
+        out << "asm(\".section .rodata\\n.incbin \\\"" << big.string() << "\\\"\\n.previous\");\n";
+    out.close();
+    const auto start = std::chrono::steady_clock::now();
+    const json s = gradeAndCheck(sub, "texslice3d", "", false, std::size_t(1024) << 20);
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_EQ(s["status"], "compile_error") << s["message"];
+    EXPECT_EQ(report_.find("unable to include"), std::string::npos) << "the attack did not run: " << s["message"];
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 100.0);
+    std::uintmax_t bytes = 0;
+    for (const auto& e : fs::recursive_directory_iterator(scratchRoot() / "report_texslice3d"))
+        if (e.is_regular_file()) bytes += e.file_size();
+    EXPECT_LT(bytes, std::uintmax_t(64) << 20) << "the build wrote into the report folder";
+}
+
+// Run as root (as Gradescope's container runs the grader), a stage still
+// holds no privilege: the machine is left as it was.
+TEST_F(HostileSubmissions, CppAsRootCannotTouchTheMachine) {
+    char hostBefore[256] = {}, hostAfter[256] = {};
+    gethostname(hostBefore, sizeof hostBefore);
+    const std::string attack =
+        "    std::puts(\"HOSTILE-RAN\");\n"
+        "    if (sethostname(\"owned\", 5) == 0) std::puts(\"ALLOWED hostname\");\n"
+        "    if (syscall(SYS_add_key, \"user\", \"voxlab-hostile-key\", \"x\", 1, -4) >= 0) std::puts(\"ALLOWED key\");\n"
+        "    if (setpriority(PRIO_PROCESS, 0, -20) == 0) std::puts(\"ALLOWED nice\");\n"
+        "    sched_param p{}; p.sched_priority = 1;\n"
+        "    if (sched_setscheduler(0, SCHED_FIFO, &p) == 0) std::puts(\"ALLOWED fifo\");\n"
+        "    if (open(\"/dev/kmsg\", O_WRONLY) >= 0) std::puts(\"ALLOWED kmsg\");\n"
+        "    for (const char* d : {\"/dev/vda\", \"/dev/sda\", \"/dev/nvme0n1\", \"/dev/loop0\", \"/dev/mem\"})\n"
+        "        if (open(d, O_RDWR) >= 0) std::printf(\"ALLOWED %s\\n\", d);\n"
+        "    if (mount(\"none\", \"/tmp\", \"tmpfs\", 0, nullptr) == 0) std::puts(\"ALLOWED mount\");\n"
+        "    std::fflush(stdout);\n    std::abort();\n";
+    fs::path sub = submissionWith("root", "texslice3d", "assignments");
+    std::ofstream(sub / "texslice3d/proxy_geometry.cpp")
+        << hostileCpp(attack, "#include <sched.h>\n#include <sys/mount.h>\n#include <sys/resource.h>\n#include <sys/syscall.h>\n");
+    const json s = gradeAndCheck(sub, "texslice3d");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_NE(report_.find("HOSTILE-RAN"), std::string::npos) << s["message"];
+    EXPECT_EQ(report_.find("ALLOWED"), std::string::npos) << s["message"];
+    gethostname(hostAfter, sizeof hostAfter);
+    EXPECT_STREQ(hostBefore, hostAfter);
+    EXPECT_EQ(syscall(SYS_keyctl, 10, -4, "user", "voxlab-hostile-key", 0), -1);  // KEYCTL_SEARCH: no such key
+}
+
+// Nothing of the grader's environment reaches the stage: not a token, not
+// the ssh agent's socket.
+TEST_F(HostileSubmissions, TheGradersEnvironmentAndSocketsStayOut) {
+    const fs::path agent = scratch("agent") / "agent.sock";
+    const int server = socket(AF_UNIX, SOCK_STREAM, 0);
+    sockaddr_un addr{};
+    addr.sun_family = AF_UNIX;
+    std::strncpy(addr.sun_path, agent.c_str(), sizeof addr.sun_path - 1);
+    ASSERT_EQ(bind(server, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+    listen(server, 4);
+    setenv("GRADER_API_TOKEN", "voxlab-secret-7c1f", 1);
+    setenv("SSH_AUTH_SOCK", agent.c_str(), 1);
+    const std::string attack =
+        "    std::puts(\"HOSTILE-RAN\");\n"
+        "    int s = socket(AF_UNIX, SOCK_STREAM, 0);\n    sockaddr_un a{};\n    a.sun_family = AF_UNIX;\n"
+        "    std::strncpy(a.sun_path, \"" + agent.string() + "\", sizeof a.sun_path - 1);\n"
+        "    if (connect(s, (sockaddr*)&a, sizeof a) == 0) { (void)!write(s, \"key?\", 4); std::puts(\"CONNECTED\"); }\n"
+        "    std::fflush(stdout);\n"
+        "    std::string all;\n"
+        "    for (char** e = environ; *e; ++e) all += std::string(*e) + \" \";\n"
+        "    throw std::runtime_error(\"environment: \" + all);\n";
+    fs::path sub = submissionWith("environment", "texslice3d", "assignments");
+    std::ofstream(sub / "texslice3d/proxy_geometry.cpp")
+        << hostileCpp(attack, "#include <stdexcept>\n#include <sys/socket.h>\n#include <sys/un.h>\n");
+    const json s = gradeAndCheck(sub, "texslice3d");
+    unsetenv("GRADER_API_TOKEN");
+    unsetenv("SSH_AUTH_SOCK");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_NE(report_.find("HOSTILE-RAN"), std::string::npos) << s["message"];
+    EXPECT_NE(report_.find("environment: "), std::string::npos) << "the exception did not reach the report";
+    EXPECT_EQ(report_.find("voxlab-secret-7c1f"), std::string::npos);
+    EXPECT_EQ(report_.find("CONNECTED"), std::string::npos);
+    pollfd p = {server, POLLIN, 0};
+    EXPECT_EQ(poll(&p, 1, 100), 0) << "the agent's socket was reached";
+    close(server);
+}
+
+// Memory outside any one process: a memfd, and children each under the
+// per-process cap. One cap holds the stage's processes together.
+TEST_F(HostileSubmissions, OneMemoryCapHoldsTheWholeStage) {
+    if (std::find(sandboxLayers().begin(), sandboxLayers().end(), "memory cgroup") == sandboxLayers().end())
+        GTEST_SKIP() << "no memory cgroup here (not root, no delegation)";
+    const std::string attack =
+        "    std::puts(\"HOSTILE-RAN\");\n    std::fflush(stdout);\n"
+        "    int fd = (int)syscall(SYS_memfd_create, \"hostile\", 0);\n"
+        "    static char chunk[1 << 20];\n    std::memset(chunk, 1, sizeof chunk);\n"
+        "    long held = 0;\n    while (held < 3000 && write(fd, chunk, sizeof chunk) == (ssize_t)sizeof chunk) ++held;\n"
+        "    std::printf(\"HELD %ld MiB\\n\", held);\n"
+        "    for (int i = 0; i < 6; ++i) if (fork() == 0) {\n"
+        "        char* p = (char*)std::malloc(700u << 20); for (long b = 0; p && b < (700l << 20); b += 4096) p[b] = 1;\n"
+        "        std::puts(\"CHILD HELD 700 MiB\"); std::fflush(stdout); pause(); }\n"
+        "    sleep(5);\n";
+    fs::path sub = submissionWith("memory", "texslice3d", "assignments");
+    std::ofstream(sub / "texslice3d/proxy_geometry.cpp") << hostileCpp(attack, "#include <sys/syscall.h>\n");
+    const json s = gradeAndCheck(sub, "texslice3d", "", false, std::size_t(1024) << 20);
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_NE(report_.find("HOSTILE-RAN"), std::string::npos) << s["message"];
+    EXPECT_EQ(report_.find("HELD 3000 MiB"), std::string::npos) << "a memfd held 3 GB under a 1 GiB cap";
+    std::size_t children = 0;
+    for (std::size_t at = report_.find("CHILD HELD"); at != std::string::npos; at = report_.find("CHILD HELD", at + 1))
+        ++children;
+    EXPECT_LT(children, 4u) << "children held more than the stage's cap together";
 }
 
 // --- A class survives any one submission. ---

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <thread>
@@ -36,6 +37,7 @@ std::vector<OptionSpec> limitOptions() {
             {"tolerance", "KEY=VALUE", "an image tolerance for every scene, e.g. min_ssim=0.95 (repeatable; keys: docs/instructors.md)"},
             {"quiet", "", "no progress bar"},
             {"no-cache", "", "render the reference's expected outputs even when the cache holds them"},
+            {"expected", "DIR", "grade against expected outputs rendered elsewhere (--render-expected), e.g. on another GL"},
             {"help", "", "show this help"}};
 }
 
@@ -78,6 +80,20 @@ std::optional<Assignment> assignmentFrom(const Args& args, GraderOptions& option
             throw Error("option --stage: " + s + " is not a stage of " + a.path);
     if (options.stages.empty()) options.stages = stages;
     return a;
+}
+
+// --expected DIR: the expected outputs were rendered elsewhere (on another
+// GL implementation, or by an instructor for a release) and are used as
+// they are; DIR/expected.json says whether they hold the hidden scenes.
+void useExpectedFrom(const Args& args, GraderOptions& options) {
+    if (!args.get("expected")) return;
+    const fs::path dir = *args.get("expected");
+    if (!fs::is_directory(dir)) throw Error("option --expected: " + dir.string() + ": no such folder");
+    options.shipped = true;
+    options.expectedDir = fs::absolute(dir).lexically_normal().string();
+    std::ifstream in(dir / "expected.json");
+    const json record = json::parse(in, nullptr, false);
+    options.hiddenScenes = !record.is_discarded() && record.value("hidden_scenes", false);
 }
 
 std::optional<double> timeOption(const Args& args, const std::string& name) {
@@ -175,6 +191,7 @@ int gradeCommand(int argc, char** argv) {
         {"batch", "DIR", "grade every submission folder inside DIR (a class)"},
         {"reference", "DIR", "the reference solution (default: the project's reference/)"},
         {"render-expected", "DIR", "only render the reference's expected outputs into DIR (for a student release)"},
+        {"with-hidden", "", "--render-expected: also the hidden scenes (for grading with --expected, not for students)"},
         {"prepare", "", "only render the reference's expected outputs into the cache, so that grading starts at once"},
         {"submitted-at", "TIME", "when the submission was made (ISO 8601), for the assignment's late policy"},
         {"due", "TIME", "the due date (ISO 8601), instead of the assignment file's"},
@@ -185,7 +202,8 @@ int gradeCommand(int argc, char** argv) {
         GraderOptions options = limitsFrom(args);
         options.referenceRoot = args.get("reference").value_or(projectRoot() + "/reference");
         options.expectedDir = *args.get("render-expected");
-        options.hiddenScenes = false;  // a release's goldens: the hidden scenes stay with the instructor
+        // A release's goldens: the hidden scenes stay with the instructor.
+        options.hiddenScenes = args.has("with-hidden");
         renderExpectedOutputs(options);
         std::cout << options.expectedDir << "\n";
         return 0;
@@ -211,6 +229,7 @@ int gradeCommand(int argc, char** argv) {
     options.referenceRoot = args.get("reference").value_or(projectRoot() + "/reference");
     const fs::path out = args.get("out").value_or("grade-report");
     options.expectedDir = (out / ".expected").string();
+    useExpectedFrom(args, options);
     const std::optional<Assignment> assignment = assignmentFrom(args, options);
     const std::optional<double> submittedAt = timeOption(args, "submitted-at"), due = timeOption(args, "due");
     std::optional<double> similarity = SimilarityOptions().threshold;
@@ -284,6 +303,7 @@ int checkCommand(int argc, char** argv) {
         options.referenceRoot = (root / "reference").string();
         options.expectedDir = (out / ".expected").string();
     }
+    useExpectedFrom(args, options);
     assignmentFrom(args, options);  // its stages and points, checked against the manifests just chosen
     fs::create_directories(out);
     const std::vector<json> reports = gradeSubmissions({{"your work", tree, out.string()}}, options);

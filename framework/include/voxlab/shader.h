@@ -137,7 +137,23 @@ private:
 };
 
 // Throws voxlab::Error("OpenGL error GL_INVALID_OPERATION after <where>") if
-// the GL error flag is set.
+// the GL error flag is set, or, with strict checks on, the driver reported
+// an error through KHR_debug.
 void checkGlError(const char* where);
+
+// checkGlError after a draw: with strict checks on, also what a GPU's driver
+// refuses to draw and Mesa draws (two sampler types on one texture unit).
+void checkGlDraw(const char* where);
+
+// Strict checks (gl_strict.cpp): KHR_debug errors and the GL rules Mesa
+// does not enforce, for the current thread's context. Wanted where
+// $VOXLAB_GL_DEBUG is set (the tests set it); GlContext turns them on.
+class GlContext;
+void enableStrictGlChecks(const GlContext& context);
+bool strictGlChecksWanted();
+bool strictGlChecks();
+// What the checks found since the last call ("" when nothing or off).
+std::string strictGlProblems();
+std::string strictGlDebugErrors();
 
 }  // namespace voxlab

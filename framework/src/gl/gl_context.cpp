@@ -1,5 +1,6 @@
 // voxlab: the parts of GlContext shared by every backend.
 #include "voxlab/gl_context.h"
+#include "voxlab/shader.h"
 
 #include <cstdlib>
 #include <cstring>
@@ -58,6 +59,7 @@ void GlContext::loadFunctions(const char* kind) {
     if (major < 3 || (major == 3 && minor < 3))
         throw Error(std::string(kind) + ": OpenGL " + std::to_string(major) + "." +
                     std::to_string(minor) + " found, 3.3 core or newer is needed");
+    if (strictGlChecksWanted()) enableStrictGlChecks(*this);
 }
 
 namespace {

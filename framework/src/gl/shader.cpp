@@ -357,6 +357,8 @@ void ShaderProgram::set(const char* name, const glm::mat4& m) const {
 
 void checkGlError(const char* where) {
     const GLenum err = glGetError();
+    const std::string reported = strictGlChecks() ? strictGlDebugErrors() : "";
+    if (err == GL_NO_ERROR && !reported.empty()) throw Error("OpenGL: " + reported + " (after " + where + ")");
     if (err == GL_NO_ERROR) return;
     const char* name = "unknown";
     switch (err) {
@@ -367,7 +369,18 @@ void checkGlError(const char* where) {
         case GL_OUT_OF_MEMORY: name = "GL_OUT_OF_MEMORY"; break;
     }
     while (glGetError() != GL_NO_ERROR) {}
-    throw Error(std::string("OpenGL error ") + name + " after " + where);
+    throw Error(std::string("OpenGL error ") + name + " after " + where + (reported.empty() ? "" : ": " + reported));
+}
+
+void checkGlDraw(const char* where) {
+    // What a strict driver refuses first: Mesa may answer the same draw with
+    // a bare GL_INVALID_OPERATION, which says less.
+    const std::string problems = strictGlProblems();
+    if (!problems.empty()) {
+        while (glGetError() != GL_NO_ERROR) {}
+        throw Error("OpenGL: " + problems + " (" + where + ")");
+    }
+    checkGlError(where);
 }
 
 }  // namespace voxlab

@@ -153,7 +153,7 @@ bool allowedVariable(const std::string& name) {
     static const char* const exact[] = {"LANG", "LANGUAGE", "LC_ALL", "LC_CTYPE", "LC_MESSAGES", "LC_NUMERIC",
                                         "TZ", "GALLIUM_DRIVER", "LIBGL_ALWAYS_SOFTWARE", "EGL_PLATFORM",
                                         "__EGL_VENDOR_LIBRARY_FILENAMES", "__EGL_VENDOR_LIBRARY_DIRS",
-                                        "VOXLAB_ROOT", "VOXLAB_DATA_PATH", "VOXLAB_GL", "ASAN_OPTIONS",
+                                        "VOXLAB_ROOT", "VOXLAB_DATA_PATH", "VOXLAB_GL", "VOXLAB_GL_DEBUG", "ASAN_OPTIONS",
                                         "UBSAN_OPTIONS", "LSAN_OPTIONS"};
     static const char* const prefixes[] = {"MESA_", "LP_", "GALLIVM_", "__GL_"};
     for (const char* e : exact)

@@ -214,7 +214,7 @@ ProbeResults GlslProbe::run(int cases, const std::vector<std::vector<glm::vec4>>
         glViewport(0, 0, width, height);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
-    checkGlError("drawing a function probe");
+    checkGlDraw("drawing a function probe");
 
     std::vector<glm::vec4> read[kTargets];
     glPixelStorei(GL_PACK_ALIGNMENT, 4);

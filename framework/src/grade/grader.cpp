@@ -122,6 +122,11 @@ void renderExpectedStage(const std::string& stage, const GraderOptions& options)
     for (const auto& [key, error] : outcome.results.errors)
         throw Error("the reference failed: " + key + ": " + error.value("message", ""));
     fs::create_directories(out / "checks");
+    // The worker's last line names the GL it rendered with ("gl: OSMesa: llvmpipe ...").
+    const std::size_t gl = outcome.output.rfind("gl: ");
+    if (gl != std::string::npos)
+        writeFileAtomically((out / "gl.txt").string(),
+                            outcome.output.substr(gl + 4, outcome.output.find('\n', gl) - gl - 4) + "\n");
     for (const auto& [name, image] : outcome.results.images) savePng(image, (out / (name + ".png")).string());
     for (const auto& [name, result] : outcome.results.checks)
         writeFileAtomically((out / "checks" / (name + ".json")).string(), result.dump() + "\n");
@@ -216,6 +221,9 @@ void renderExpectedWithLibrary(const GraderOptions& given) {
     fs::remove_all(fs::path(options.expectedDir) / ".work");
     for (const std::string& f : failures)
         if (!f.empty()) throw Error("rendering the expected outputs: " + f);
+    // What grading against this folder (--expected) needs to know of it.
+    writeFileAtomically((fs::path(options.expectedDir) / "expected.json").string(),
+                        json({{"hidden_scenes", options.hiddenScenes}}).dump(2) + "\n");
 }
 
 }  // namespace

@@ -36,6 +36,7 @@ void EngineDrawContext::drawArrays(unsigned mode, const std::vector<glm::vec3>& 
     glBindBuffer(GL_ARRAY_BUFFER, engine_.geometryVbo_);
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(glm::vec3)), vertices.data(), GL_STREAM_DRAW);
     glDrawArrays(mode, 0, GLsizei(vertices.size()));
+    if (strictGlChecks()) checkGlDraw(("drawing geometry for renderer '" + scene_.renderer + "'").c_str());
 }
 
 void EngineDrawContext::drawTriangles(const std::vector<glm::vec3>& vertices) { drawArrays(GL_TRIANGLES, vertices); }
@@ -57,6 +58,7 @@ void EngineDrawContext::drawInstancedSquares(const std::vector<glm::vec4>& insta
     glBindBuffer(GL_ARRAY_BUFFER, engine_.pointVbo_);
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(instances.size() * sizeof(glm::vec4)), instances.data(), GL_STREAM_DRAW);
     glDrawArraysInstanced(GL_TRIANGLES, 0, 6, GLsizei(instances.size()));
+    if (strictGlChecks()) checkGlDraw(("drawing instances for renderer '" + scene_.renderer + "'").c_str());
 }
 
 void EngineDrawContext::enableDepthTest() {
@@ -113,6 +115,7 @@ void EngineDrawContext::drawToOutput() {
 void EngineDrawContext::drawFullScreen() {
     glBindVertexArray(engine_.vao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (strictGlChecks()) checkGlDraw(("drawing a pass of renderer '" + scene_.renderer + "'").c_str());
 }
 
 }  // namespace voxlab

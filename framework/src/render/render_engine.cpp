@@ -481,7 +481,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
         glBindVertexArray(vao_);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
-    checkGlError(("drawing with renderer '" + renderer.id() + "'").c_str());
+    checkGlDraw(("drawing with renderer '" + renderer.id() + "'").c_str());
 }
 
 unsigned RenderEngine::sliceStack(int axis) {
@@ -560,7 +560,7 @@ void RenderEngine::drawCut(const Scene& scene, unsigned framebuffer) {
     glViewport(0, 0, scene.width, scene.height);
     glBindVertexArray(vao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    checkGlError("composing the cutting plane's halves");
+    checkGlDraw("composing the cutting plane's halves");
 }
 
 void RenderEngine::renderTo(const Scene& scene, unsigned framebuffer) {

@@ -210,7 +210,7 @@ void RenderEngine::drawBricked(const Scene& scene, const Pass& pass, const PassI
         drawBrick(*stateProgram, b, layerFbo_[1 - current]);
         current = 1 - current;
     }
-    checkGlError(("drawing the bricks with renderer '" + pass.renderer->id() + "'").c_str());
+    checkGlDraw(("drawing the bricks with renderer '" + pass.renderer->id() + "'").c_str());
     if (counter) current = 2;
 
     const ShaderConstants resolveConstants = {{"u_brick_combine", int(combine)},
@@ -227,7 +227,7 @@ void RenderEngine::drawBricked(const Scene& scene, const Pass& pass, const PassI
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
     glViewport(0, 0, scene.width, scene.height);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    checkGlError("resolving the bricks' state into the image");
+    checkGlDraw("resolving the bricks' state into the image");
 }
 
 }  // namespace voxlab

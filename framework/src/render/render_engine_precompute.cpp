@@ -92,7 +92,7 @@ void RenderEngine::runPrecomputation(const Precomputation& what, int index, cons
         prog.set("u_precompute_layer", layer);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
-    checkGlError(("computing " + what.sampler).c_str());
+    checkGlDraw(("computing " + what.sampler).c_str());
     made.key = key;
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(framebuffer));
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);

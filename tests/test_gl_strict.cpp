@@ -57,6 +57,27 @@ TEST_F(GlStrict, TwoSamplerTypesOnOneUnitFailTheDraw) {
     glUseProgram(0);
 }
 
+// A sampler the engine never sets starts on a unit of its own type's
+// (parkSamplerUniforms), not on unit 0 with the volume: found on an NVIDIA
+// driver, which kept a bricked render's u_brick_state active in composite's
+// back-to-front program and refused every such draw.
+TEST_F(GlStrict, ASamplerLeftUnsetDoesNotShareUnitZero) {
+    const std::unique_ptr<ShaderProgram> program = twoSamplerTypes();
+    program->use();
+    program->set("u_b", 0);  // u_a is never set
+    GLuint vao = 0;
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    EXPECT_NO_THROW(checkGlDraw("drawing the strict test"));
+    GLint unit = -1;
+    glGetUniformiv(program->id(), glGetUniformLocation(program->id(), "u_a"), &unit);
+    EXPECT_GE(unit, 16);
+    glBindVertexArray(0);
+    glDeleteVertexArrays(1, &vao);
+    glUseProgram(0);
+}
+
 TEST_F(GlStrict, TheDriversOwnErrorMessagesAreKept) {
     glBindTexture(GL_TEXTURE_2D, 0);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, 12345);  // GL_INVALID_ENUM

@@ -96,6 +96,10 @@ public:
     // compile the shader as written either way.
     void setCompileOnce(bool on) { compileOnce_ = on; }
     bool compileOnce() const { return compileOnce_; }
+    // A constant baked into every program compiled from now on (as the
+    // constants given to preprocess() are), such as u_exact_filtering
+    // (voxlab/filtering.glsl); a program's own constants win.
+    void setGlobalConstant(const std::string& name, int value) { globalConstants_[name] = value; }
 
     // The text of a generated shader, by the path resolve() gave it.
     const std::string* generatedText(const std::string& path) const;
@@ -105,6 +109,7 @@ private:
     std::map<std::string, std::string> generated_;  // "generated:NAME" -> text
     GlslDialect dialect_ = nativeGlslDialect();
     bool compileOnce_ = false;
+    ShaderConstants globalConstants_;
 };
 
 class ShaderProgram {
@@ -144,6 +149,13 @@ void checkGlError(const char* where);
 // checkGlError after a draw: with strict checks on, also what a GPU's driver
 // refuses to draw and Mesa draws (two sampler types on one texture unit).
 void checkGlDraw(const char* where);
+
+// Points every active sampler uniform of `program` at a texture unit of its
+// own type's (16 and up, past the units voxlab binds), so that a sampler
+// the engine never sets (one that this driver keeps active and another
+// optimises away) cannot share unit 0 with a sampler of another type: a
+// GPU's driver refuses such a draw. ShaderProgram does it after linking.
+void parkSamplerUniforms(unsigned program);
 
 // Strict checks (gl_strict.cpp): KHR_debug errors and the GL rules Mesa
 // does not enforce, for the current thread's context. Wanted where

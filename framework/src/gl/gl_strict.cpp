@@ -100,7 +100,43 @@ std::string samplerConflicts(GLuint program) {
     return "";
 }
 
+// The order in which parkSamplerUniforms gives sampler types their units.
+int samplerTypeIndex(GLenum type) {
+    static const GLenum order[] = {GL_SAMPLER_2D, GL_SAMPLER_3D, GL_SAMPLER_2D_ARRAY, GL_UNSIGNED_INT_SAMPLER_3D,
+                                   GL_INT_SAMPLER_3D, GL_UNSIGNED_INT_SAMPLER_2D, GL_INT_SAMPLER_2D,
+                                   GL_SAMPLER_1D, GL_SAMPLER_CUBE, GL_SAMPLER_2D_SHADOW, GL_SAMPLER_BUFFER,
+                                   GL_UNSIGNED_INT_SAMPLER_2D_ARRAY, GL_INT_SAMPLER_2D_ARRAY};
+    for (int i = 0; i < int(sizeof order / sizeof order[0]); ++i)
+        if (order[i] == type) return i;
+    return -1;
+}
+
 }  // namespace
+
+void parkSamplerUniforms(unsigned program) {
+    constexpr int kFirstParkingUnit = 16;
+    GLint units = 0, count = 0, previous = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
+    glGetProgramiv(program, GL_ACTIVE_UNIFORMS, &count);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &previous);
+    glUseProgram(program);
+    for (GLint i = 0; i < count; ++i) {
+        char name[256];
+        GLsizei length = 0;
+        GLint size = 0;
+        GLenum type = 0;
+        glGetActiveUniform(program, GLuint(i), sizeof name, &length, &size, &type, name);
+        const int index = samplerTypeIndex(type);
+        if (index < 0 || kFirstParkingUnit + index >= units) continue;  // too few units: left as it is
+        std::string base(name, std::size_t(length));
+        if (base.size() > 3 && base.compare(base.size() - 3, 3, "[0]") == 0) base.resize(base.size() - 3);
+        for (GLint e = 0; e < size; ++e) {
+            const std::string element = size > 1 ? base + "[" + std::to_string(e) + "]" : base;
+            glUniform1i(glGetUniformLocation(program, element.c_str()), kFirstParkingUnit + index);
+        }
+    }
+    glUseProgram(GLuint(previous));
+}
 
 void enableStrictGlChecks(const GlContext& context) {
     strict = true;

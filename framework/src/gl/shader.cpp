@@ -291,7 +291,9 @@ std::string ShaderLibrary::resolve(const std::string& name, const std::string& i
     throw ShaderError(where + "shader '" + name + "' not found (searched: " + searched + ")");
 }
 
-PreprocessedShader ShaderLibrary::preprocess(const std::string& name, const ShaderConstants& constants) const {
+PreprocessedShader ShaderLibrary::preprocess(const std::string& name, const ShaderConstants& given) const {
+    ShaderConstants constants = globalConstants_;
+    for (const auto& [key, value] : given) constants[key] = value;
     Preprocessor p{*this, constants, {}, {}, {}};
     p.addFile(resolve(name), true);
     return p.out;
@@ -327,6 +329,7 @@ ShaderProgram::ShaderProgram(const ShaderLibrary& library, const std::string& ve
         program_ = 0;
         throw ShaderError(fragmentName + ": link error: " + fs.mapLog(log));
     }
+    parkSamplerUniforms(program_);
 }
 
 ShaderProgram::~ShaderProgram() {

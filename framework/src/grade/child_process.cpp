@@ -124,7 +124,19 @@ struct Prepared {
     std::size_t nproc = 0;
     int unshareFlags = 0, fallbackFlags = 0, lastCapability = 40;
     unsigned cgroupLayers = 0;
+    bool seccomp = true, landlock = true, capabilities = true;
 };
+
+// VOXLAB_SANDBOX_OFF=seccomp,landlock,namespaces,userns,capabilities turns
+// layers off, for an instructor finding out which one a machine's GL driver
+// trips over (docs/grading.md); the report then lists them as missing. Set
+// by whoever runs the grader, never by a submission.
+bool turnedOff(const char* layer) {
+    const char* off = std::getenv("VOXLAB_SANDBOX_OFF");
+    if (!off) return false;
+    const std::string list = std::string(",") + off + ",";
+    return list.find(std::string(",") + layer + ",") != std::string::npos;
+}
 
 // What any dynamically linked program (and Mesa, or a GPU driver through
 // glvnd) reads: libraries, headers, the loader's configuration, facts about
@@ -136,10 +148,20 @@ std::vector<std::string> systemReadable(const std::vector<std::string>& argv) {
         "/usr/lib", "/usr/lib32", "/usr/lib64", "/usr/libx32", "/usr/libexec", "/usr/local/lib", "/usr/include",
         "/usr/share/glvnd", "/usr/share/drirc.d", "/usr/share/locale", "/usr/share/zoneinfo", "/lib", "/lib32",
         "/lib64", "/libx32", "/sys", "/proc/self", "/proc/cpuinfo", "/proc/meminfo", "/proc/stat",
-        "/proc/sys/kernel", "/proc/driver", "/proc/modules", "/proc/devices", "/etc/ld.so.cache",
+        "/proc/sys/kernel", "/proc/driver", "/proc/modules", "/proc/devices", "/etc/ld.so.cache", "/etc/ld.so.preload",
         "/etc/ld.so.conf", "/etc/ld.so.conf.d", "/etc/localtime", "/etc/drirc", "/etc/nsswitch.conf",
-        "/etc/passwd", "/etc/group", "/etc/glvnd"};
+        "/etc/passwd", "/etc/group", "/etc/glvnd", "/usr/share/egl", "/etc/egl"};
+    // The GL vendors' configuration files are often links into the driver's
+    // own folders (glvnd's egl_vendor.d on Ubuntu's NVIDIA packages):
+    // what they point at is readable too.
     std::error_code ec;
+    for (const char* folder : {"/usr/share/glvnd/egl_vendor.d", "/etc/glvnd/egl_vendor.d",
+                               "/usr/share/egl/egl_external_platform.d", "/etc/egl/egl_external_platform.d"})
+        for (const auto& entry : fs::directory_iterator(folder, ec))
+            if (entry.is_symlink(ec)) {
+                const fs::path target = fs::canonical(entry.path(), ec);
+                if (!ec) paths.push_back(target.string());
+            }
     const fs::path program = fs::canonical(argv[0], ec);
     if (!ec) paths.push_back(program.string());
     return paths;
@@ -201,6 +223,11 @@ Prepared prepare(const std::vector<std::string>& argv, const ChildLimits& limits
     p.fallbackFlags = CLONE_NEWPID | CLONE_NEWNET | CLONE_NEWIPC | CLONE_NEWUTS | CLONE_NEWNS;
     p.unshareFlags = p.fallbackFlags | CLONE_NEWUSER;
     if (geteuid() != 0) p.fallbackFlags = 0;  // without a user namespace, only root may unshare
+    if (turnedOff("userns")) p.unshareFlags = p.fallbackFlags;
+    if (turnedOff("namespaces")) p.unshareFlags = p.fallbackFlags = 0;
+    p.seccomp = !turnedOff("seccomp");
+    p.landlock = !turnedOff("landlock");
+    p.capabilities = !turnedOff("capabilities");
     p.uidMap = std::to_string(geteuid()) + " " + std::to_string(geteuid()) + " 1\n";
     p.gidMap = std::to_string(getegid()) + " " + std::to_string(getegid()) + " 1\n";
     if (geteuid() != 0) p.nproc = userProcessLimit(limits.maxProcesses);
@@ -264,12 +291,13 @@ bool dropCapabilities(int lastCapability) {
         setLimit(RLIMIT_NPROC, p.nproc);
         layers |= kNproc;
     }
-    if (limits.isolate || !p.writable.empty())
+    if ((limits.isolate || !p.writable.empty()) && p.landlock)
         layers |= sandbox::restrictSelf(p.readable, p.writable, p.devices, limits.isolate);
     if (limits.isolate) {
         layers |= kEnvironment;
-        if (dropCapabilities(p.lastCapability)) layers |= kNoCapabilities;
-        if (sandbox::SyscallFilter::instance().load()) layers |= kSeccomp;  // last: it denies capset
+        if (p.capabilities && dropCapabilities(p.lastCapability)) layers |= kNoCapabilities;
+        // Last: it denies capset.
+        if (p.seccomp && sandbox::SyscallFilter::instance().load()) layers |= kSeccomp;
     }
     unsigned char message[5] = {'L'};
     std::memcpy(message + 1, &layers, 4);
@@ -286,12 +314,13 @@ bool dropCapabilities(int lastCapability) {
 // only its own ids) where the kernel allows one, else, as root, without.
 unsigned enterNamespaces(const Prepared& p, const ChildLimits& limits) {
     unsigned layers = 0;
-    if (unshare(p.unshareFlags) == 0) {
-        if (!writeFile("/proc/self/setgroups", "deny") || !writeFile("/proc/self/uid_map", p.uidMap) ||
-            !writeFile("/proc/self/gid_map", p.gidMap))
+    const bool user = p.unshareFlags & CLONE_NEWUSER;
+    if (p.unshareFlags != 0 && unshare(p.unshareFlags) == 0) {
+        if (user && (!writeFile("/proc/self/setgroups", "deny") || !writeFile("/proc/self/uid_map", p.uidMap) ||
+                     !writeFile("/proc/self/gid_map", p.gidMap)))
             _exit(126);
-        layers |= kNamespaces | kUtsMount | kUserNamespace;
-    } else if (p.fallbackFlags != 0 && unshare(p.fallbackFlags) == 0) {
+        layers |= kNamespaces | kUtsMount | (user ? unsigned(kUserNamespace) : 0u);
+    } else if (user && p.fallbackFlags != 0 && unshare(p.fallbackFlags) == 0) {
         layers |= kNamespaces | kUtsMount;
     } else {
         return 0;

@@ -312,6 +312,8 @@ std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, c
         }
         report["score"] = score;
         report["max_score"] = maxScore;
+        for (const json& stage : graded)
+            if (stage.contains("gl") && !report.contains("machine")) report["machine"] = stage["gl"];
         report["stages"] = graded;
         if (!sub.layoutNote.empty()) report["layout_note"] = sub.layoutNote;
         if (options.adjustReport) options.adjustReport(report);

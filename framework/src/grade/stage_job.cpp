@@ -200,7 +200,7 @@ std::vector<std::string> toolchainPrograms() {
 // over 64 MiB.
 bool buildLibrary(const std::vector<std::string>& sources, const std::string& root, const fs::path& lib,
                   const ChildCgroup& cgroup, RunOutcome& outcome) {
-    std::vector<std::string> readable = {root, projectRoot() + "/framework/include"};
+    std::vector<std::string> readable = {root, projectRoot() + "/framework/include", projectRoot() + "/framework/stage_library"};
     if (const std::string exports = stageExportsObject(); !exports.empty()) readable.push_back(exports);
     const std::string prelude = stagePreludeHeader();
     if (!prelude.empty()) readable.insert(readable.end(), {prelude, prelude + ".gch"});

@@ -276,6 +276,9 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
                                                : "earned only when every scene and check passes"}};
     stage["score"] = perWeight * credit + (allPassed ? bonusMax : 0.0);
     stage["sandbox"] = outcome.sandbox;
+    // The worker's last line names the GL it rendered with.
+    if (const std::size_t gl = outcome.output.rfind("gl: "); gl != std::string::npos)
+        stage["gl"] = outcome.output.substr(gl + 4, outcome.output.find('\n', gl) - gl - 4);
     if (!compileLog.empty()) stage["log"] = compileLog;
     auto [status, message] = stageStatus(outcome, compileLog, scenes, checks);
     // The worker's output (what a C++ stage printed, a crash) helps when something went wrong.

@@ -11,6 +11,7 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <initializer_list>
 
 namespace voxlab::sandbox {
@@ -134,7 +135,14 @@ std::string build(scmp_filter_ctx ctx, std::string* error) {
 }  // namespace
 
 SyscallFilter::SyscallFilter() {
-    scmp_filter_ctx ctx = seccomp_init(SCMP_ACT_ERRNO(EPERM));
+    // VOXLAB_SANDBOX_OFF=seccomp-log (an instructor's diagnosis, never a
+    // submission's: docs/grading.md): calls off the list are allowed and
+    // logged by the kernel (dmesg, "type=1326 ... syscall=N"), to find what
+    // a machine's GL driver needs.
+    const char* off = std::getenv("VOXLAB_SANDBOX_OFF");
+    const bool logOnly = off && std::string(",") + off + "," != std::string() &&
+                         (std::string(",") + off + ",").find(",seccomp-log,") != std::string::npos;
+    scmp_filter_ctx ctx = seccomp_init(logOnly ? SCMP_ACT_LOG : SCMP_ACT_ERRNO(EPERM));
     if (!ctx) {
         error_ = "seccomp_init failed";
         return;

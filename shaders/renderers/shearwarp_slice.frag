@@ -31,7 +31,7 @@ void main() {
     vec4 sample = vec4(0.0);
     if (all(greaterThanEqual(x, vec2(0.0))) && all(lessThan(x, size))) {
         float value = u_interpolation == 0 ? texelFetch(u_stack, ivec3(ivec2(floor(x)), u_slice), 0).r
-                                           : texture(u_stack, vec3(x / size, float(u_slice))).r;
+                                           : filtered(u_stack, vec3(x / size, float(u_slice))).r;
         vec4 c = transfer_function(value);
         float alpha = opacity_correction(c.a, u_slice_units);
         sample = vec4(c.rgb * alpha, alpha);

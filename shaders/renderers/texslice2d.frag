@@ -22,7 +22,7 @@ float stack_value(vec3 p) {
     float layer = clamp(p[a] / u_volume_extent[a] * layers - 0.5, 0.0, layers - 1.0);
     float below = floor(layer);
     float above = min(below + 1.0, layers - 1.0);
-    return mix(texture(u_stack, vec3(uv, below)).r, texture(u_stack, vec3(uv, above)).r, layer - below);
+    return mix(filtered(u_stack, vec3(uv, below)).r, filtered(u_stack, vec3(uv, above)).r, layer - below);
 }
 
 void main() {

@@ -44,7 +44,7 @@ float sample_volume2(vec3 p) {
     if (u_interpolation == 0) return voxel2_value(ivec3(floor(v)));
     // Linear filtering by the GPU (the texture's filter is linear): a shipped
     // framework file never spells out the sampling stage's interpolation.
-    return textureLod(u_volume2, p / u_volume_extent, 0.0).r * u_value2_scale + u_value2_offset;
+    return filtered(u_volume2, p / u_volume_extent).r * u_value2_scale + u_value2_offset;
 }
 
 vec4 transfer_function2(float value) {

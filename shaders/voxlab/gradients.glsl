@@ -24,7 +24,7 @@ uniform sampler3D u_gradient_volume;
 
 vec3 gradient_at(vec3 p) {
     if (u_interpolation >= 3) return gradient_cubic(p);  // the cubic kernel's own derivative
-    if (u_precomputed_gradients != 0) return textureLod(u_gradient_volume, p / u_volume_extent, 0.0).xyz;
+    if (u_precomputed_gradients != 0) return filtered(u_gradient_volume, p / u_volume_extent).xyz;
     return u_sobel != 0 ? gradient_sobel(p) : gradient_central(p);
 }
 

@@ -75,7 +75,7 @@ vec4 distance_transfer_function(float d) {
 // colour from the distance function, opacity multiplied by its opacity.
 vec4 apply_label_distance(vec4 c, int label, vec3 p) {
     if (label_entry(label).y == 0.0) return c;
-    vec4 d = distance_transfer_function(textureLod(u_label_distance, p / u_volume_extent, 0.0).r);
+    vec4 d = distance_transfer_function(filtered(u_label_distance, p / u_volume_extent).r);
     return vec4(d.rgb, c.a * d.a);
 }
 

@@ -126,6 +126,10 @@ public:
     // Fewer compiles at a small cost in speed (ShaderLibrary::setCompileOnce):
     // for the grading worker and the tests, which draw each program a few times.
     void setCompileOnce(bool on) { library_.setCompileOnce(on); }
+    // Linear filtering written out in float (voxlab/filtering.glsl) in every
+    // program compiled from now on: the grader's choice, so that a verdict
+    // does not depend on the GL's filtering precision. Set before rendering.
+    void setExactFiltering(bool on) { library_.setGlobalConstant("u_exact_filtering", on ? 1 : 0); }
 
     // Bricked rendering (voxlab/volume_bricks.h): the GPU memory the volume's
     // textures may take unless a scene says otherwise ("gpu_memory"): what

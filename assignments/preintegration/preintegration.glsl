@@ -34,7 +34,9 @@
 // square over the transfer function's range u_tf_range on both axes (x:
 // front, y: back): texel i holds the value lo + i (hi - lo) / (size - 1),
 // and its centre is at texture coordinate (i + 1/2) / size. Values outside
-// the range are clamped to it.
+// the range are clamped to it. Read it between texels with
+// filtered(u_preintegration_table, uv) (voxlab/filtering.glsl): the GPU's
+// bilinear filtering, which the grader computes the same on every OpenGL.
 //
 // The compositing loops of the composite stage stay as they are: they
 // expect a colour (not premultiplied) and an opacity per unit length, and

@@ -64,6 +64,14 @@ std::vector<StageProblem> stageProblems(const nlohmann::json& results);
 // Messages are given for the first four kinds only.
 std::string problemsSummary(const nlohmann::json& results);
 
+// The gradebook as CSV text: a header (name, score, max_score, every stage
+// of any report in the order they first appear, problems) and a row per
+// report: its total, each stage's score (empty where it has none), and its
+// problems (problemsSummary, or "not graded: " and the reason for a
+// submission whose "status" is "error"). Text cells go through csvCell()
+// (untrusted_text.h): valid UTF-8, quoted where needed, never a formula.
+std::string gradebookCsv(const std::vector<nlohmann::json>& reports);
+
 // Writes reportDir/index.html for one graded submission from its results
 // (the schema above). Image paths in the results are relative to reportDir;
 // an image that is named but not on disk is shown as a placeholder. Creates

@@ -2,6 +2,7 @@
 // html_report.h): a row per submission, a column per stage, each row linking
 // to the submission's own report folder.
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "html_text.h"
 #include "voxlab/atomic_file.h"
 #include "voxlab/html_report.h"
+#include "voxlab/untrusted_text.h"
 
 namespace voxlab {
 namespace {
@@ -195,6 +197,34 @@ std::string problemsSummary(const json& results) {
         if (severity(p.status) <= 3 && !p.message.empty()) out += " (" + p.message + ")";
     }
     return out;
+}
+
+std::string gradebookCsv(const std::vector<json>& reports) {
+    std::vector<std::string> stages;  // every stage of any report, in the order they first appear
+    for (const json& r : reports)
+        for (const json& s : html::array(r, "stages"))
+            if (std::find(stages.begin(), stages.end(), html::text(s, "stage")) == stages.end())
+                stages.push_back(html::text(s, "stage"));
+    std::string csv = "name,score,max_score";
+    for (const std::string& stage : stages) csv += "," + csvCell(stage);
+    csv += ",problems\n";
+    for (const json& r : reports) {
+        char total[64];
+        std::snprintf(total, sizeof total, "%.2f,%.2f", html::number(r, "score").value_or(0.0),
+                      html::number(r, "max_score").value_or(0.0));
+        csv += csvCell(html::text(r, "name")) + "," + total;
+        for (const std::string& stage : stages) {
+            const json* s = findStage(r, stage);
+            char score[32] = "";
+            if (s) std::snprintf(score, sizeof score, "%.2f", html::number(*s, "score").value_or(0.0));
+            csv += std::string(",") + score;
+        }
+        std::string problems = problemsSummary(r);  // worst first (html_report.h)
+        if (html::text(r, "status") == "error")
+            problems = "not graded: " + html::text(r, "message");
+        csv += "," + csvCell(problems) + "\n";
+    }
+    return csv;
 }
 
 void writeClassHtmlReport(const json& gradebook, const std::string& dir) {

@@ -77,6 +77,8 @@ std::string gradebookCsv(const std::vector<nlohmann::json>& reports);
 // an image that is named but not on disk is shown as a placeholder. Creates
 // no folders. Throws voxlab::Error when the file cannot be written.
 void writeHtmlReport(const nlohmann::json& results, const std::string& reportDir);
+// The page writeHtmlReport() writes, as text (it reads the images' sizes).
+std::string htmlReportPage(const nlohmann::json& results, const std::string& reportDir);
 
 // Writes dir/index.html for a class: one row per submission (name, score,
 // per-stage scores, status), each linking to its report folder, sortable by
@@ -86,5 +88,7 @@ void writeHtmlReport(const nlohmann::json& results, const std::string& reportDir
 // every submission (a worked example) get no column. Throws voxlab::Error
 // when the file cannot be written.
 void writeClassHtmlReport(const nlohmann::json& gradebook, const std::string& dir);
+// The page writeClassHtmlReport() writes, as text.
+std::string classHtmlReportPage(const nlohmann::json& gradebook);
 
 }  // namespace voxlab

@@ -227,7 +227,7 @@ std::string gradebookCsv(const std::vector<json>& reports) {
     return csv;
 }
 
-void writeClassHtmlReport(const json& gradebook, const std::string& dir) {
+std::string classHtmlReportPage(const json& gradebook) {
     const json& submissions = gradebook.is_array() ? gradebook : html::array(gradebook, "submissions");
     std::vector<StageColumn> columns = stageColumns(submissions);
     std::string title = html::text(gradebook, "title");
@@ -278,8 +278,11 @@ void writeClassHtmlReport(const json& gradebook, const std::string& dir) {
             "points (the worked example) have no column. Click a column heading to sort by it.</p></section></main>\n"
             "<footer>Written by voxlab grade. Each name links to that submission's report.</footer>\n";
 
-    writeFileAtomically((std::filesystem::path(dir) / "index.html").string(),
-                        html::page(title, body, html::sortableTableScript));
+    return html::page(title, body, html::sortableTableScript);
+}
+
+void writeClassHtmlReport(const json& gradebook, const std::string& dir) {
+    writeFileAtomically((std::filesystem::path(dir) / "index.html").string(), classHtmlReportPage(gradebook));
 }
 
 }  // namespace voxlab

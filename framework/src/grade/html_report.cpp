@@ -415,7 +415,7 @@ std::string summaryTable(const json& stages, const std::vector<std::string>& ids
 
 }  // namespace
 
-void writeHtmlReport(const json& results, const std::string& reportDir) {
+std::string htmlReportPage(const json& results, const std::string& reportDir) {
     const json& stages = html::array(results, "stages");
     IdMaker ids;
     std::vector<std::string> stageIds;
@@ -429,9 +429,12 @@ void writeHtmlReport(const json& results, const std::string& reportDir) {
     body += "</main>\n<footer>Written by voxlab grade. This folder is self-contained and works offline.</footer>\n";
 
     const std::string name = html::text(results, "name");
-    writeFileAtomically((fs::path(reportDir) / "index.html").string(),
-                        html::page((name.empty() ? std::string("Submission") : name) + " \u2013 voxlab report", body,
-                                   html::compareSliderScript));
+    return html::page((name.empty() ? std::string("Submission") : name) + " \u2013 voxlab report", body,
+                      html::compareSliderScript);
+}
+
+void writeHtmlReport(const json& results, const std::string& reportDir) {
+    writeFileAtomically((fs::path(reportDir) / "index.html").string(), htmlReportPage(results, reportDir));
 }
 
 }  // namespace voxlab

@@ -50,7 +50,7 @@ json reportOf(const std::vector<std::string>& f) {
     // (No "images": the grader names them from the manifest, and a page reads their sizes from disk.)
     const json scene = {{"name", f[1]}, {"status", "error"}, {"message", f[3]}, {"score", 0.5}, {"max_score", 1.0},
                         {"scene_file", f[1]}, {"setup", f[3]}};
-    const json check = {{"name", f[1]}, {"status", "failed"}, {"message", f[3]}, {"examples", {f[4], f[3]}},
+    const json check = {{"name", f[1]}, {"status", "failed"}, {"message", f[3]}, {"examples", {f[4], json{{"got", f[3]}}}},
                         {"score", 0.0}, {"max_score", 1.0}};
     const json stage = {{"stage", f[1]}, {"title", f[0]}, {"status", "compile_error"}, {"message", f[3]},
                         {"log", f[2]}, {"score", 1.5}, {"max_score", 10.0}, {"not_implemented", {f[1]}},

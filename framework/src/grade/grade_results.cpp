@@ -218,7 +218,9 @@ std::vector<Test> stageTests(const json& stage) {
             if (!setup.empty()) output += "\nScene" + (file.empty() ? "" : " " + file) + ": " + setup;
             const std::string inputs = html::checkInputsText(html::object(item, "inputs"));
             if (!inputs.empty() && item.value("status", "") != "passed") output += "\nInputs: " + inputs;
-            for (const json& ex : item.value("examples", json::array())) output += "\n  " + ex.get<std::string>();
+            for (const json& ex : html::array(item, "examples"))
+                output += "\n  " + (ex.is_string() ? ex.get<std::string>()
+                                                   : ex.dump(-1, ' ', false, json::error_handler_t::replace));
             const std::string visibility =
                 item.value("visibility", item.value("hidden", false) ? "after_due_date" : "visible");
             add(title + ": " + item.value("name", "?"), item, output, visibility,

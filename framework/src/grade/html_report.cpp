@@ -300,9 +300,12 @@ std::string checksTable(const json& checks) {
             out += std::string("<details") + (status == "passed" ? "" : " open") + "><summary>" +
                    std::to_string(examples.size()) + (examples.size() == 1 ? " example" : " examples") +
                    "</summary><ul class=\"examples\">";
-            for (const json& example : examples)
-                out += "<li><code>" + html::escape(example.is_string() ? example.get<std::string>() : example.dump()) +
-                       "</code></li>";
+            for (const json& example : examples) {
+                const std::string text = example.is_string()
+                                             ? example.get<std::string>()
+                                             : example.dump(-1, ' ', false, json::error_handler_t::replace);
+                out += "<li><code>" + html::escape(text) + "</code></li>";
+            }
             out += "</ul></details>";
         }
         out += "</td></tr>\n";

@@ -148,7 +148,8 @@ std::string row(const json& submission, std::vector<StageColumn>& columns, Total
     if (!status.empty())
         out += "<div class=\"prob\">" + html::badge(status) + (message.empty() ? "" : " " + html::escape(message)) +
                "</div>";
-    out += problemsBlock(submission) + "</td>";
+    // Not graded at all: the reason above says it once, not again for every stage.
+    out += (status == "error" ? std::string() : problemsBlock(submission)) + "</td>";
     out += "<td class=\"num total-cell\" data-sort=\"" + sortKey(score) + "\">" +
            html::escape(html::formatScore(score, maxScore)) + html::scoreBar(score, maxScore) + "</td>";
 

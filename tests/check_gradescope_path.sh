@@ -8,8 +8,9 @@
 # a zip of that, and the assignments/ folder itself. Each must score the
 # same. results.json must follow the assignment's visibility, its test
 # scores must add up to the total exactly, and a submission two days late
-# loses the file's 10 % a day. A zip whose entries climb out with "../"
-# must not write outside the folder.
+# loses the file's 10 % a day. A zip with an entry that climbs out with
+# "../" is refused as a whole (voxlab unpacks zips, not Python): it writes
+# nothing outside, and its results.json scores 0 and says why.
 #
 # usage: check_gradescope_path.sh PROJECT_DIR VOXLAB_BINARY
 set -euo pipefail
@@ -38,12 +39,14 @@ grade() {
     loose) cp "$student/mip/mip.glsl" "$student/minip/minip.glsl" "$s/" ;;
     nested) mkdir -p "$s/voxlab-student/assignments" && cp -r "$student/mip" "$student/minip" "$s/voxlab-student/assignments/" ;;
     assignments) mkdir -p "$s/assignments" && cp -r "$student/mip" "$student/minip" "$s/assignments/" ;;
-    zip) mkdir -p "$work/z/voxlab-student/assignments" && cp -r "$student/mip" "$student/minip" "$work/z/voxlab-student/assignments/"
+    zip|zip_climb)
+         rm -rf "$work/z" && mkdir -p "$work/z/voxlab-student/assignments"
+         cp -r "$student/mip" "$student/minip" "$work/z/voxlab-student/assignments/"
          (cd "$work/z" && python3 -c 'import sys, zipfile, os
 with zipfile.ZipFile(sys.argv[1], "w") as z:
     for d, _, fs in os.walk("."):
         for f in fs: z.write(os.path.join(d, f))
-    z.writestr("../../climbed_out.txt", "outside")' "$s/upload.zip") ;;
+    if sys.argv[2] == "zip_climb": z.writestr("../../climbed_out.txt", "outside")' "$s/upload.zip" "$layout") ;;
   esac
   VOXLAB_AUTOGRADER_ROOT="$root" VOXLAB_AUTOGRADER_VOXLAB="$project" VOXLAB_AUTOGRADER_BIN="$bin" \
     bash "$project/tools/gradescope/run_autograder" > "$work/$name.log" 2>&1
@@ -53,7 +56,7 @@ with zipfile.ZipFile(sys.argv[1], "w") as z:
   fi
 }
 
-for layout in proper loose nested assignments zip; do grade "$layout" 2026-12-01T12:00:00Z "$layout"; done
+for layout in proper loose nested assignments zip zip_climb; do grade "$layout" 2026-12-01T12:00:00Z "$layout"; done
 grade proper 2026-12-03T10:00:00+00:00 late
 
 python3 - "$work" <<'EOF'
@@ -82,6 +85,9 @@ for layout in ["loose", "nested", "assignments", "zip"]:
     r = load(layout)
     check(r["score"] == proper["score"] and key(r) == key(proper),
           f"{layout}: scored {r['score']}, unlike the proper layout's {proper['score']}")
+climb = load("zip_climb")
+check(climb["score"] == 0 and "climbs out" in climb["output"] + json.dumps(climb["tests"]),
+      f"a zip with a ../ entry is refused with its reason: {climb['score']}, {climb['output'][:200]}")
 late = load("late")
 check(abs(late["score"] - round(proper["score"] * 0.8, 2)) < 0.006,
       f"two days late at 10 %/day: {late['score']} should be 0.8 x {proper['score']}")

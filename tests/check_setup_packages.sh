@@ -50,7 +50,7 @@ EOF
 printf '#!/bin/sh\nexit 0\n' >"$tmp/build/bin/voxlab"
 chmod +x "$tmp/bin/"* "$tmp/build/bin/voxlab"
 
-grader="cmake make g++ pkg-config python3 libglm-dev libstb-dev libosmesa6-dev libegl-dev zlib1g-dev nlohmann-json3-dev khronos-api libgdcm-dev libseccomp-dev"
+grader="cmake make g++ pkg-config python3 libglm-dev libstb-dev libosmesa6-dev libegl-dev zlib1g-dev nlohmann-json3-dev khronos-api libgdcm-dev libseccomp-dev libarchive-dev"
 full="$grader libglfw3-dev libimgui-dev libgtest-dev xvfb xauth fonts-dejavu-core python3-pydicom glslang-tools"
 
 # run OS_RELEASE ARGS...: runs setup.sh with the stand-ins; sets out, err, rc, log.
@@ -88,7 +88,7 @@ FAKE_INSTALLED="cmake make g++ python3" run ubuntu2204 --grader
 expect "ubuntu install: exit status" 0 "$rc"
 expect "ubuntu install: apt-get calls" \
   "apt-get update -qq
-apt-get install -y -qq --no-install-recommends pkg-config libglm-dev libstb-dev libosmesa6-dev libegl-dev zlib1g-dev nlohmann-json3-dev khronos-api libgdcm-dev libseccomp-dev" \
+apt-get install -y -qq --no-install-recommends pkg-config libglm-dev libstb-dev libosmesa6-dev libegl-dev zlib1g-dev nlohmann-json3-dev khronos-api libgdcm-dev libseccomp-dev libarchive-dev" \
   "$(grep '^apt-get' <<<"$log")"
 grep -q -- "-DVOXLAB_WITH_VIEWER=OFF" <<<"$log" || fail "ubuntu install: no grader build configured: $log"
 expect "ubuntu install: stderr" "" "$err"

@@ -17,7 +17,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class GlStrict : public GlTest {};
+class GlStrict : public GlTest {
+public:
+    // On also when this binary runs outside CTest.
+    static void SetUpTestSuite() {
+        setenv("VOXLAB_GL_DEBUG", "1", 0);
+        GlTest::SetUpTestSuite();
+    }
+};
 
 // A program with a sampler2D and a sampler3D, both used.
 std::unique_ptr<ShaderProgram> twoSamplerTypes() {

@@ -496,6 +496,25 @@ TEST(StubScan, NamesTheFunctionsStillStubbed) {
         EXPECT_TRUE(unimplementedFunctions((kSource / "reference" / s).string()).empty()) << s;
 }
 
+// The stub scan runs in the grader on the submission's own files. With
+// std::regex it overflowed the stack (SIGSEGV) on a line of 200 000 spaces.
+TEST(StubScan, ALineOf200000SpacesIsScannedWithoutOverflowingTheStack) {
+    const fs::path dir = fs::path(::testing::TempDir()) / ("voxlab_stub_scan_" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "stage.glsl") << "float mip_ray(Ray r) {\n    not_implemented();\n}\n"
+                                      << std::string(200000, ' ') << "\n"
+                                      << std::string(200000, 'x') << "\n"
+                                      << "std::vector<glm::vec3> planeBoxPolygon(const Plane& p,\n"
+                                      << "                                       int n) {\n"
+                                      << "\tthrow   NotImplemented (\"planeBoxPolygon\");\n}\n"
+                                      << "const float* weird_name_2 (int) {\n  not_implemented ( ) ;\n}\n"
+                                      << "int x = helper(\n  not_implemented();\n"  // not a signature: '='
+                                      << "vec4 done(vec4 c) { return c; }\n  not_implementedX();\n";
+    EXPECT_EQ(unimplementedFunctions(dir.string()),
+              (std::vector<std::string>{"mip_ray", "planeBoxPolygon", "weird_name_2"}));
+    fs::remove_all(dir);
+}
+
 // The command line: a class graded with --batch gives a gradebook and a
 // class report; `voxlab check` exits 0 only when the stages checked pass.
 TEST(GradeCommand, BatchWritesAGradebookAndCheckSaysWhatIsMissing) {

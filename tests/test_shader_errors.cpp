@@ -201,5 +201,58 @@ TEST(ShaderLibrary, LogMappingHandlesMesaAndNvidiaFormats) {
     EXPECT_EQ(s.mapLog("0:5(1): error: y"), "renderers/mip.frag:5:1: error: y");
 }
 
+// The directives and the compiler's log are read by hand-written scans
+// (no std::regex, which recursed per character: a line of 200 000 spaces
+// overflowed the stack). They mean what the regular expressions meant.
+TEST(ShaderLibrary, DirectivesAreReadByScansThatMeanWhatTheExpressionsMeant) {
+    const fs::path root = fs::temp_directory_path() / ("voxlab_scan_" + std::to_string(::getpid()));
+    fs::create_directories(root);
+    std::ofstream(root / "a.glsl") << "float from_a;\n";
+    std::ofstream(root / "entry.frag") << "#version 330 core // the version\r\n"
+                                       << "  #  include   \"a.glsl\"   // included\n"
+                                       << "#include \"b.glsl\" // a CR ends this comment\r\n"
+                                       << "#include \"\"\n"
+                                       << "uniform int  N ;  // baked\n"
+                                       << "uniform bool\tB;\n"
+                                       << "uniform integer M;\n"
+                                       << "uniform int K; int k2;\n"
+                                       << std::string(200000, ' ') << "\n"
+                                       << "out vec4 c;\nvoid main ( void ) { c = vec4(N); }\n";
+    const ShaderLibrary lib({root.string()});
+    const PreprocessedShader s = lib.preprocess("entry.frag", {{"N", 7}, {"B", 1}, {"M", 2}, {"K", 3}});
+    EXPECT_NE(s.text.find("float from_a;"), std::string::npos);
+    EXPECT_NE(s.text.find("#include \"b.glsl\" // a CR ends this comment\r\n"), std::string::npos);
+    EXPECT_NE(s.text.find("#include \"\"\n"), std::string::npos);
+    EXPECT_NE(s.text.find("const int N = 7;"), std::string::npos);
+    EXPECT_NE(s.text.find("const int B = 1;"), std::string::npos);
+    EXPECT_NE(s.text.find("uniform integer M;"), std::string::npos);
+    EXPECT_NE(s.text.find("uniform int K; int k2;"), std::string::npos);
+    fs::remove_all(root);
+
+    for (const char* ok : {"#version 330", "#version 330 core", "  # version  330\tcore  ", "#version 330\r",
+                           "#version 330 core // c\r", "#version 330 core\r"})
+        EXPECT_NO_THROW(versionPreamble(ok, GlslDialect::Core330, "x")) << ok;
+    for (const char* bad : {"#version 3300", "#version 330 corex", "#version 330core", "#version 330 // c\rx",
+                            "#version 450 core", "version 330"})
+        EXPECT_THROW(versionPreamble(bad, GlslDialect::Core330, "x"), ShaderError) << bad;
+    EXPECT_THROW(versionPreamble(std::string(200000, ' '), GlslDialect::Core330, "x"), ShaderError);
+}
+
+TEST(ShaderLibrary, LogMappingHandlesAngleAndLeavesOtherLinesAlone) {
+    PreprocessedShader s;
+    s.files = {"renderers/mip.frag", "voxlab/ray.glsl", "mip/mip.glsl"};
+    EXPECT_EQ(s.mapLog("ERROR: 0:100002: 'x' : undeclared identifier"),
+              "voxlab/ray.glsl:2: error: 'x' : undeclared identifier");
+    EXPECT_EQ(s.mapLog("WARNING:0:5:   unused"), "renderers/mip.frag:5: warning: unused");
+    EXPECT_EQ(s.mapLog("0:300001(2): error: y"), "<source 3>:1:2: error: y");
+    EXPECT_EQ(s.mapLog("0:5(1): error: y\r"), "0:5(1): error: y\r");  // as std::regex's `.*$` had it
+    EXPECT_EQ(s.mapLog("0:5(1):   \r"), "renderers/mip.frag:5:1: ");
+    const std::string huge = "0:" + std::string(25, '9') + "(1): error: z";  // std::stol threw out_of_range
+    EXPECT_EQ(s.mapLog(huge), huge);
+    const std::string longLine = std::string(200000, ' ') + "x";
+    EXPECT_EQ(s.mapLog(longLine), longLine);
+    EXPECT_EQ(s.mapLog("\n\n"), "shader compilation failed with an empty log");
+}
+
 }  // namespace
 }  // namespace voxlab::testing

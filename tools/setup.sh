@@ -45,11 +45,12 @@ case "$system" in
   "debian 12"|"ubuntu 22.04") ;;
   *) echo "setup: $system is untested (Debian 12 and Ubuntu 22.04 are); trying their package names" >&2 ;;
 esac
-# libgdcm-dev reads DICOM series (every mode loads volumes); python3-pydicom
+# libgdcm-dev reads DICOM series (every mode loads volumes); libarchive-dev
+# unpacks students' zip uploads for the grader; python3-pydicom
 # writes the DICOM series the tests load (tests/dicom/make_series.py);
 # glslang-tools checks every shader as GLSL ES 3.00 too (tests/test_glsl_es.cpp).
 packages=(cmake make g++ pkg-config python3 libglm-dev libstb-dev libosmesa6-dev libegl-dev zlib1g-dev
-          nlohmann-json3-dev khronos-api libgdcm-dev libseccomp-dev)
+          nlohmann-json3-dev khronos-api libgdcm-dev libseccomp-dev libarchive-dev)
 [ "$mode" = --grader ] || packages+=(libglfw3-dev libimgui-dev libgtest-dev xvfb xauth fonts-dejavu-core
                                      python3-pydicom glslang-tools)
 missing=()

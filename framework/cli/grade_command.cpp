@@ -1,5 +1,8 @@
 // voxlab grade / voxlab check: the grader's command line (see grader.h).
 #include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <set>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -19,6 +22,8 @@
 #include "voxlab/grader.h"
 #include "voxlab/html_report.h"
 #include "voxlab/similarity.h"
+#include "voxlab/untrusted_text.h"
+#include "voxlab/upload.h"
 
 namespace voxlab::cli {
 
@@ -103,48 +108,72 @@ std::optional<double> timeOption(const Args& args, const std::string& name) {
     return t;
 }
 
-// A submission as uploaded, brought into the shape of assignments/
-// (assignment.h): nested folders are found, loose files are placed.
-Submission shapedSubmission(const std::string& name, const fs::path& upload, const fs::path& report,
-                            const GraderOptions& options) {
-    std::vector<std::string> stages;  // an unknown one is the grader's to report, with its own message
-    for (const std::string& s : options.stages.empty() ? gradedStages(options.referenceRoot) : options.stages)
-        if (fs::exists(fs::path(options.referenceRoot) / s / "grading.json")) stages.push_back(s);
-    const fs::path staging = report / ".upload";
-    fs::remove_all(staging);
-    Submission s{name, "", report.string(), {}, ""};
-    s.folder = submissionRoot(upload.string(), options.referenceRoot, stages, staging.string(), &s.layoutNote);
-    return s;
-}
-
-std::string csvField(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string q = "\"";
-    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return q + "\"";
-}
-
-// One row per submission: total, then each stage's score. The table is
-// built in memory and saved atomically: a failed save leaves the previous
-// gradebook whole and ends the command with an error.
-void writeGradebook(const std::vector<json>& reports, const std::string& path) {
-    std::ostringstream csv;
-    csv << "name,score,max_score";
-    if (!reports.empty())
-        for (const json& s : reports[0]["stages"]) csv << "," << csvField(s.value("stage", "?"));
-    csv << ",problems\n";
-    for (const json& r : reports) {
-        char total[64];
-        std::snprintf(total, sizeof total, "%.2f,%.2f", r.value("score", 0.0), r.value("max_score", 0.0));
-        csv << csvField(r.value("name", "?")) << "," << total;
-        for (const json& s : r["stages"]) {
-            char score[32];
-            std::snprintf(score, sizeof score, "%.2f", s.value("score", 0.0));
-            csv << "," << score;
-        }
-        csv << "," << csvField(problemsSummary(r)) << "\n";  // worst first (html_report.h)
+// The grader's copies of the uploads (upload.h): a private folder in OUT,
+// made with mkdtemp and removed when the command ends, however it ends.
+class UploadCopies {
+public:
+    explicit UploadCopies(const fs::path& out) {
+        fs::create_directories(out);
+        std::string pattern = (out / ".uploads-XXXXXX").string();
+        if (!mkdtemp(pattern.data())) throw Error(terminalLine(out.string()) + ": cannot create a folder for the uploads' copies");
+        path_ = pattern;
     }
-    writeFileAtomically(path, csv.str());
+    UploadCopies(const UploadCopies&) = delete;
+    UploadCopies& operator=(const UploadCopies&) = delete;
+    ~UploadCopies() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+};
+
+bool isZipFile(const fs::path& p) {
+    std::string ext = p.extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    std::error_code ec;
+    return ext == ".zip" && fs::is_regular_file(p, ec);
+}
+
+// A student's name from their upload: the folder's name, or the zip's without ".zip".
+std::string uploadName(const fs::path& upload) {
+    fs::path normal = fs::absolute(upload).lexically_normal();
+    if (normal.filename().empty()) normal = normal.parent_path();  // "alice/"
+    return isZipFile(normal) ? normal.stem().string() : normal.filename().string();
+}
+
+// The uploads of a class: every folder and .zip file directly in `batch`
+// (names starting with a dot are skipped), sorted by name. Anything else
+// is named on stderr and skipped.
+std::vector<fs::path> classUploads(const fs::path& batch) {
+    std::vector<fs::path> uploads;
+    std::error_code ec;
+    for (fs::directory_iterator it(batch, ec), end; !ec && it != end; it.increment(ec)) {
+        const fs::path p = it->path();
+        if (p.filename().string()[0] == '.') continue;
+        std::error_code typeError;
+        if (it->is_directory(typeError) || isZipFile(p)) uploads.push_back(p);
+        else std::cerr << "voxlab grade: skipped " << terminalLine(p.filename().string(), 200)
+                       << ": not a folder or a .zip file\n";
+    }
+    if (ec) throw Error(terminalLine(batch.string()) + ": cannot list the class folder: " + ec.message());
+    std::sort(uploads.begin(), uploads.end(),
+              [](const fs::path& a, const fs::path& b) { return uploadName(a) < uploadName(b); });
+    return uploads;
+}
+
+// The class's gradebook entries for OUT/index.html: each links to its
+// submission's own folder.
+json classGradebook(const std::vector<json>& reports, const std::vector<Submission>& submissions, double seconds) {
+    json entries = json::array();
+    for (std::size_t i = 0; i < reports.size(); ++i) {
+        json entry = reports[i];
+        entry["report"] = fs::path(submissions[i].reportDir).filename().string() + "/index.html";
+        entries.push_back(entry);
+    }
+    return {{"submissions", entries}, {"elapsed_s", seconds}};
 }
 
 // Similar code across the class, as evidence for a person (similarity.h):
@@ -152,7 +181,8 @@ void writeGradebook(const std::vector<json>& reports, const std::string& path) {
 std::string reportSimilarity(const std::vector<Submission>& submissions, const GraderOptions& options,
                              double threshold, const fs::path& out) {
     std::vector<SimilaritySubmission> code;
-    for (const Submission& s : submissions) code.push_back({s.name, s.folder});
+    for (const Submission& s : submissions)
+        if (s.problem.empty()) code.push_back({s.name, s.folder});
     SimilarityOptions o;
     o.threshold = threshold;
     const SimilarityReport r = findSimilarCode(code, similarityStages(options.referenceRoot, options.stages),
@@ -183,12 +213,72 @@ int prepareCache(const Args& args) {
     return 0;
 }
 
+// --submission: one upload (a folder or a .zip file) graded into `out`. An
+// upload that cannot be graded still gets its report, and exit status 1.
+int gradeOne(const fs::path& upload, const fs::path& out, const GraderOptions& options) {
+    std::error_code ec;
+    if (!fs::is_directory(upload, ec) && !isZipFile(upload))
+        throw Error(terminalLine(upload.string()) + ": no such folder or .zip file");
+    const UploadCopies copies(out);
+    std::set<std::string> taken;
+    const std::string name = uploadName(upload);
+    const Submission submission =
+        prepareSubmission(name, upload.string(), out.string(), (copies.path() / safeFolderName(name, taken)).string(),
+                          options);
+    const std::vector<json> reports = gradeSubmissions({submission}, options);
+    std::cout << terminalText(summaryTable(reports[0]), kMaxLogBytes) << "report: " << terminalLine((out / "index.html").string())
+              << "\n";
+    if (reports[0].value("status", "") != "error") return 0;
+    std::cerr << "voxlab grade: " << terminalLine(reports[0].value("name", "?")) << " was not graded: "
+              << terminalLine(reports[0].value("message", "")) << "\n";
+    return 1;
+}
+
+// --batch: every upload in `batch` graded into OUT/<folder>/ (a safe,
+// unique folder name: untrusted_text.h), then the gradebook, the class
+// report and the similarity report. A submission that cannot be graded is
+// a row with its reason; the class is always graded to the end.
+int gradeClass(const fs::path& batch, const fs::path& out, const GraderOptions& options,
+               std::optional<double> similarity) {
+    std::error_code ec;
+    if (!fs::is_directory(batch, ec)) throw Error(terminalLine(batch.string()) + ": no such folder");
+    const std::vector<fs::path> uploads = classUploads(batch);
+    if (uploads.empty()) throw Error(terminalLine(batch.string()) + ": no submission folders or .zip files inside");
+    const UploadCopies copies(out);
+    std::set<std::string> taken;
+    std::vector<Submission> submissions;
+    for (const fs::path& upload : uploads) {
+        const std::string name = uploadName(upload), folder = safeFolderName(name, taken);
+        submissions.push_back(prepareSubmission(name, upload.string(), (out / folder).string(),
+                                                (copies.path() / folder).string(), options));
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<json> reports = gradeSubmissions(submissions, options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    writeFileAtomically((out / "gradebook.csv").string(), gradebookCsv(reports));
+    writeClassHtmlReport(classGradebook(reports, submissions, seconds), out.string());
+    for (const json& r : reports) {
+        const std::string status = r.value("status", "") == "error" ? "  not graded: " + r.value("message", "") : "";
+        std::printf("%-24s %7.2f / %g%s\n", terminalLine(r.value("name", "?"), 200).c_str(), r.value("score", 0.0),
+                    r.value("max_score", 0.0), terminalLine(status, 300).c_str());
+    }
+    std::printf("%zu submissions graded in %.1f s; gradebook: %s\n", reports.size(), seconds,
+                terminalLine((out / "gradebook.csv").string()).c_str());
+    if (!similarity) return 0;
+    try {
+        std::cout << terminalLine(reportSimilarity(submissions, options, *similarity, out)) << "\n";
+    } catch (const std::exception& e) {
+        std::cerr << "voxlab grade: no similarity report: " << terminalLine(e.what()) << "\n";
+    }
+    return 0;
+}
+
 }  // namespace
 
 int gradeCommand(int argc, char** argv) {
     std::vector<OptionSpec> specs = {
-        {"submission", "DIR", "a submission folder, shaped like assignments/"},
-        {"batch", "DIR", "grade every submission folder inside DIR (a class)"},
+        {"submission", "DIR", "a submission: a folder, shaped like assignments/, or a .zip file"},
+        {"batch", "DIR", "grade every submission folder and .zip file inside DIR (a class)"},
         {"reference", "DIR", "the reference solution (default: the project's reference/)"},
         {"render-expected", "DIR", "only render the reference's expected outputs into DIR (for a student release)"},
         {"with-hidden", "", "--render-expected: also the hidden scenes (for grading with --expected, not for students)"},
@@ -210,16 +300,19 @@ int gradeCommand(int argc, char** argv) {
     }
     if (args.has("prepare")) return prepareCache(args);
     if (args.has("help") || args.has("submission") == args.has("batch")) {
-        std::cout << "usage: voxlab grade --submission DIR [--stage S]... [--out REPORT_DIR]\n"
+        std::cout << "usage: voxlab grade --submission DIR|FILE.zip [--stage S]... [--out REPORT_DIR]\n"
                      "       voxlab grade --batch DIR [--out DIR] [--jobs N]\n\n"
                      "Grades a submission stage by stage against the reference solution: every grading scene\n"
                      "(reference/<stage>/grading.json) is rendered by both and compared (pixel difference, SSIM,\n"
                      "FLIP), and function checks run on random inputs. Each stage runs in its own process with a\n"
                      "time limit and a memory cap. Writes REPORT_DIR/index.html (open it in a browser),\n"
-                     "report.json and results.json (Gradescope). --batch grades each folder of DIR into\n"
-                     "OUT/<name>/ and writes OUT/gradebook.csv and OUT/index.html, and OUT/similarity.html: pairs\n"
-                     "whose stage code is alike, as evidence for you to judge. An upload may be the\n"
-                     "assignments/ folder, its contents, a folder with it nested inside, or loose stage files.\n"
+                     "report.json and results.json (Gradescope). --batch grades each folder and .zip file of DIR\n"
+                     "into OUT/<name>/ (a name that is not a safe folder name gets one) and writes\n"
+                     "OUT/gradebook.csv, OUT/index.html, and OUT/similarity.html: pairs whose stage code is\n"
+                     "alike, as evidence for you to judge. An upload may be the assignments/ folder, its\n"
+                     "contents, a folder with it nested inside, loose stage files, or a zip of any of these;\n"
+                     "it is copied once before grading (links and special files are left out). One that\n"
+                     "cannot be graded gets a report and a gradebook row saying why.\n"
                      "--assignment FILE (courses/*.json) chooses the stages, their points, each test's\n"
                      "visibility in results.json and the late policy (with --submitted-at).\n\n"
                   << formatOptions(specs);
@@ -237,42 +330,8 @@ int gradeCommand(int argc, char** argv) {
     if (assignment)
         options.adjustReport = [&](json& report) { applyAssignment(report, *assignment, submittedAt, due); };
 
-    std::vector<Submission> submissions;
-    if (args.has("submission")) {
-        const fs::path folder = *args.get("submission");
-        if (!fs::is_directory(folder)) throw Error(folder.string() + ": no such folder");
-        fs::path normal = fs::absolute(folder).lexically_normal();
-        if (normal.filename().empty()) normal = normal.parent_path();  // "alice/"
-        submissions.push_back(shapedSubmission(normal.filename().string(), folder, out, options));
-    } else {
-        const fs::path batch = *args.get("batch");
-        if (!fs::is_directory(batch)) throw Error(batch.string() + ": no such folder");
-        for (const auto& entry : fs::directory_iterator(batch))
-            if (entry.is_directory() && entry.path().filename().string()[0] != '.')
-                submissions.push_back(shapedSubmission(entry.path().filename().string(), entry.path(),
-                                                       out / entry.path().filename(), options));
-        std::sort(submissions.begin(), submissions.end(),
-                  [](const Submission& a, const Submission& b) { return a.name < b.name; });
-        if (submissions.empty()) throw Error(batch.string() + ": no submission folders inside");
-    }
-    fs::create_directories(out);
-    const auto start = std::chrono::steady_clock::now();
-    const std::vector<json> reports = gradeSubmissions(submissions, options);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (args.has("submission")) {
-        std::cout << summaryTable(reports[0]) << "report: " << (out / "index.html").string() << "\n";
-    } else {
-        writeGradebook(reports, (out / "gradebook.csv").string());
-        json gradebook = {{"submissions", reports}, {"elapsed_s", seconds}};
-        writeClassHtmlReport(gradebook, out.string());
-        for (const json& r : reports)
-            std::printf("%-24s %7.2f / %g\n", r.value("name", "?").c_str(), r.value("score", 0.0),
-                        r.value("max_score", 0.0));
-        std::printf("%zu submissions graded in %.1f s; gradebook: %s\n", reports.size(), seconds,
-                    (out / "gradebook.csv").string().c_str());
-        if (similarity) std::cout << reportSimilarity(submissions, options, *similarity, out) << "\n";
-    }
-    return 0;
+    if (args.has("submission")) return gradeOne(*args.get("submission"), out, options);
+    return gradeClass(*args.get("batch"), out, options, similarity);
 }
 
 int checkCommand(int argc, char** argv) {

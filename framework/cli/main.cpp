@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "voxlab/error.h"
+#include "voxlab/untrusted_text.h"
 
 namespace {
 
@@ -52,16 +53,17 @@ int main(int argc, char** argv) {
             usage(std::cout);
             return 0;
         }
-        std::cerr << "voxlab: unknown command '" << command << "' (try voxlab help)\n";
+        std::cerr << "voxlab: unknown command '" << voxlab::terminalLine(command, 200) << "' (try voxlab help)\n";
         return 2;
     } catch (const voxlab::Error& e) {
-        std::cerr << "voxlab: " << e.what() << "\n";
+        // Messages may quote a file's name or a compiler's output: no control bytes reach the terminal.
+        std::cerr << "voxlab: " << voxlab::terminalText(e.what(), voxlab::kMaxLogBytes) << "\n";
         return 1;
     } catch (const std::bad_alloc&) {
         std::cerr << "voxlab: out of memory\n";
         return 1;
     } catch (const std::exception& e) {
-        std::cerr << "voxlab: internal error: " << e.what() << "\n";
+        std::cerr << "voxlab: internal error: " << voxlab::terminalText(e.what(), voxlab::kMaxLogBytes) << "\n";
         return 1;
     }
 }

@@ -14,6 +14,8 @@ writes DIR/NAME/* for every target, from the repository's own files:
   tf, tf2d       datasets/tf, datasets/tf2d;
   viewer_script  scripts using every command;
   deck           datasets/decks and a deck with every kind of slide;
+  report_text    students' names, file names, compiler logs and messages
+                 (Latin-1, escape sequences, formulas, markup), NUL-separated;
   dicom          pairs of neighbouring 4x4 slices of the datasets as DICOM
                  files, written here byte by byte (explicit and implicit VR
                  little endian, explicit big endian, RLE lossless; with and
@@ -364,6 +366,19 @@ def dicom_seeds(root, corpus):
         corpus.add("dicom", one + SEPARATOR + one[:len(one) - 20])  # the second cut short
 
 
+def report_text_seeds(corpus):
+    """Texts a submission controls, split at NUL: name, file, log, message, example, note."""
+    log = ("0:200014(9): error: `x' undeclared\n"
+           "mip/mip.glsl:2:1: preprocessor error: #error caf\xe9 \x1b[2J\x1b]0;owned\x07\n"
+           "texslice3d/proxy_geometry.cpp:1:2: error: #error na\xefve").encode("latin-1")
+    corpus.add("report_text", b"\0".join([b"alice", b"mip/mip.glsl", log, b"6 of 6 items outside tolerance",
+                                          b"n=(0,0,1) expected (1, 2) got (1, 3)", b"graded the stage folders found in sub/"]))
+    corpus.add("report_text", b"\0".join([b"\x1b[31m=HYPERLINK(\"http://x\")", b"l\xe9a/sub\xe9/mip.glsl",
+                                          b"<script>alert(1)</script>", b"-2+3, \"quoted\"\r\n@SUM(A1)",
+                                          b"\t=1", b"\xed\xa0\x80\xf4\x90\x80\x80\xc0\xaf\xe2\x82"]))
+    corpus.add("report_text", b"gradebook.csv\0\0" + b" " * 2000 + b"\0\xc2\x9b31m\x7f\x08")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--root", required=True, help="the voxlab repository")
@@ -379,6 +394,7 @@ def main():
     script_seeds(corpus)
     deck_seeds(args.root, corpus)
     dicom_seeds(args.root, corpus)
+    report_text_seeds(corpus)
     for target in sorted(os.listdir(args.out)):
         print("fuzz corpus %-14s %3d seeds" % (target, len(os.listdir(os.path.join(args.out, target)))))
 

@@ -11,9 +11,11 @@ set(VOXLAB_FUZZ_TARGETS
   tf2d            # 2D transfer function
   viewer_script   # viewer scripts
   deck            # demo decks
-  dicom)          # DICOM series of two files (through GDCM)
+  dicom           # DICOM series of two files (through GDCM)
+  report_text)    # students' text through the grader's report writers
 
-# The parsers and what they call; nothing that needs OpenGL.
+# The parsers and what they call, and the grader's report writers; nothing
+# that needs OpenGL.
 set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
   src/volume/volume.cpp
   src/volume/volume_io_util.cpp
@@ -34,4 +36,11 @@ set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
   src/render/camera.cpp
   src/io/atomic_file.cpp
   src/io/fd_io.cpp
-  src/io/number_text.cpp)
+  src/io/number_text.cpp
+  # the report writers (fuzz_report_text): pure text, no GL or processes
+  src/grade/untrusted_text.cpp
+  src/grade/html_text.cpp
+  src/grade/html_report.cpp
+  src/grade/html_report_style.cpp
+  src/grade/html_class_report.cpp
+  src/grade/grade_results.cpp)

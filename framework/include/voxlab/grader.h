@@ -52,11 +52,13 @@ struct GraderOptions {
 };
 
 struct Submission {
-    std::string name;    // shown in reports and the gradebook
-    std::string folder;  // shaped like assignments/
+    std::string name;    // shown in reports and the gradebook (made safe text there)
+    std::string folder;  // shaped like assignments/ (prepareSubmission: in the grader's copy of the upload)
     std::string reportDir;
     std::vector<std::string> stages;  // empty: the options' stages
     std::string layoutNote;           // how the upload was brought into shape (submissionRoot), if it was
+    std::string upload;               // the upload as given, for the report ("": `folder`)
+    std::string problem;              // why it cannot be graded (upload.h); set: every stage is an error
 };
 
 // Renders the expected outputs of `options.stages` from the reference into
@@ -69,7 +71,11 @@ struct Submission {
 void renderExpectedOutputs(const GraderOptions& options);
 
 // Grades every submission; returns their report.json contents, in order.
-// Never throws for anything a submission does.
+// Never throws for anything a submission does: a submission with a
+// `problem`, or whose report cannot be written, still gets a report whose
+// "status" is "error", with the reason as its "message" and every stage an
+// error worth 0 points. Text from a submission reaches the reports only as
+// safe text (untrusted_text.h).
 std::vector<nlohmann::json> gradeSubmissions(const std::vector<Submission>& submissions,
                                              const GraderOptions& options);
 

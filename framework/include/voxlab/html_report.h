@@ -64,11 +64,21 @@ std::vector<StageProblem> stageProblems(const nlohmann::json& results);
 // Messages are given for the first four kinds only.
 std::string problemsSummary(const nlohmann::json& results);
 
+// The gradebook as CSV text: a header (name, score, max_score, every stage
+// of any report in the order they first appear, problems) and a row per
+// report: its total, each stage's score (empty where it has none), and its
+// problems (problemsSummary, or "not graded: " and the reason for a
+// submission whose "status" is "error"). Text cells go through csvCell()
+// (untrusted_text.h): valid UTF-8, quoted where needed, never a formula.
+std::string gradebookCsv(const std::vector<nlohmann::json>& reports);
+
 // Writes reportDir/index.html for one graded submission from its results
 // (the schema above). Image paths in the results are relative to reportDir;
 // an image that is named but not on disk is shown as a placeholder. Creates
 // no folders. Throws voxlab::Error when the file cannot be written.
 void writeHtmlReport(const nlohmann::json& results, const std::string& reportDir);
+// The page writeHtmlReport() writes, as text (it reads the images' sizes).
+std::string htmlReportPage(const nlohmann::json& results, const std::string& reportDir);
 
 // Writes dir/index.html for a class: one row per submission (name, score,
 // per-stage scores, status), each linking to its report folder, sortable by
@@ -78,5 +88,7 @@ void writeHtmlReport(const nlohmann::json& results, const std::string& reportDir
 // every submission (a worked example) get no column. Throws voxlab::Error
 // when the file cannot be written.
 void writeClassHtmlReport(const nlohmann::json& gradebook, const std::string& dir);
+// The page writeClassHtmlReport() writes, as text.
+std::string classHtmlReportPage(const nlohmann::json& gradebook);
 
 }  // namespace voxlab

@@ -7,11 +7,11 @@
 #include <algorithm>
 #include <fstream>
 #include <cstring>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <sys/stat.h>
 
+#include "../io/line_scan.h"
 #include "voxlab/gl_context.h"
 #include "voxlab/scene.h"
 #include "voxlab_gl.h"
@@ -38,12 +38,22 @@ std::string displayPath(const std::string& path) {
     return path.compare(0, root.size(), root) == 0 ? path.substr(root.size()) : path;
 }
 
-// Parses `#include "name"`; returns false for any other line.
+// Parses `#include "name"` (spaces anywhere between, a // comment after);
+// returns false for any other line.
 bool parseInclude(const std::string& line, std::string* name) {
-    static const std::regex re(R"(^\s*#\s*include\s*"([^"]+)\"\s*(//.*)?$)");
-    std::smatch m;
-    if (!std::regex_match(line, m, re)) return false;
-    *name = m[1];
+    scan::Line l{line};
+    l.spaces();
+    if (!l.literal("#")) return false;
+    l.spaces();
+    if (!l.literal("include")) return false;
+    l.spaces();
+    if (!l.literal("\"")) return false;
+    const std::size_t close = line.find('"', l.at);
+    if (close == std::string::npos || close == l.at) return false;
+    const std::string inside = line.substr(l.at, close - l.at);
+    l.at = close + 1;
+    if (!l.commentOrEnd()) return false;
+    *name = inside;
     return true;
 }
 
@@ -58,11 +68,46 @@ std::string lineDirective(int fileId, int line) {
 
 // `uniform int NAME;` (or bool), for baking a uniform into a constant.
 bool parseIntUniform(const std::string& line, std::string* name) {
-    static const std::regex re(R"(^\s*uniform\s+(int|bool)\s+(\w+)\s*;\s*(//.*)?$)");
-    std::smatch m;
-    if (!std::regex_match(line, m, re)) return false;
-    *name = m[2];
+    scan::Line l{line};
+    l.spaces();
+    if (!l.literal("uniform") || !l.spaces() || !(l.literal("int") || l.literal("bool")) || !l.spaces()) return false;
+    std::string id;
+    if (!l.identifier(&id)) return false;
+    l.spaces();
+    if (!l.literal(";") || !l.commentOrEnd()) return false;
+    *name = id;
     return true;
+}
+
+// `#version 330` or `#version 330 core`, with an optional // comment.
+bool isVersion330(const std::string& line) {
+    scan::Line l{line};
+    l.spaces();
+    if (!l.literal("#")) return false;
+    l.spaces();
+    if (!l.literal("version") || !l.spaces() || !l.literal("330")) return false;
+    const std::size_t afterNumber = l.at;
+    if (!(l.spaces() && l.literal("core"))) l.at = afterNumber;
+    return l.commentOrEnd(true);
+}
+
+// Whether `text` declares `void main()` (or `void main(void)`) anywhere.
+bool declaresMain(const std::string& text) {
+    for (std::size_t at = text.find("void"); at != std::string::npos; at = text.find("void", at + 1)) {
+        if (at > 0 && scan::isWord(text[at - 1])) continue;
+        scan::Line l{text, at + 4};
+        if (!l.spaces() || !l.literal("main")) continue;
+        l.spaces();
+        if (!l.literal("(")) continue;
+        l.spaces();
+        const std::size_t beforeVoid = l.at;
+        if (!(l.literal("void") && (l.spaces(), l.literal(")")))) {
+            l.at = beforeVoid;
+            if (!l.literal(")")) continue;
+        }
+        return true;
+    }
+    return false;
 }
 
 }  // namespace
@@ -76,8 +121,7 @@ GlslDialect nativeGlslDialect() {
 }
 
 std::string versionPreamble(const std::string& firstLine, GlslDialect dialect, const std::string& where) {
-    static const std::regex version(R"(^\s*#\s*version\s+330(\s+core)?\s*(//.*)?\r?$)");
-    if (!std::regex_match(firstLine, version))
+    if (!isVersion330(firstLine))
         throw ShaderError(where + ": an entry shader's first line is '#version 330 core' (found '" +
                           firstLine.substr(0, 60) + "')");
     if (dialect == GlslDialect::Core330) return "#version 330 core\n";
@@ -176,9 +220,8 @@ unsigned compileStage(GLenum stage, const PreprocessedShader& src) {
 // dst + (src - dst), off by one unit in the last place wherever the target
 // held something.) Other drivers get the shader as written.
 PreprocessedShader compiledOnceOnLlvmpipe(PreprocessedShader fs) {
-    static const std::regex entry(R"(\bvoid\s+main\s*\(\s*(void)?\s*\))");
     const std::size_t firstLine = fs.text.find('\n');
-    if (firstLine == std::string::npos || !std::regex_search(fs.text, entry)) return fs;
+    if (firstLine == std::string::npos || !declaresMain(fs.text)) return fs;
     fs.text.insert(firstLine + 1, "#define main voxlab_entry_main\n");
     fs.text += "\n#undef main\nuniform bool voxlab_never_set;\n"
                "void main() {\n    if (voxlab_never_set) discard;\n    voxlab_entry_main();\n}\n";
@@ -187,29 +230,68 @@ PreprocessedShader compiledOnceOnLlvmpipe(PreprocessedShader fs) {
 
 }  // namespace
 
+namespace {
+
+// One line of a compiler's log in a format known here: the encoded line
+// number (see kLineStride), what follows it, and the message.
+struct LogLine {
+    long line = 0;
+    std::string after;    // ":5" (Mesa's column), or nothing
+    std::string message;  // ANGLE's with "error: " or "warning: " in front
+};
+
+// Mesa: "0:12(5): error: ...".
+bool parseMesaLine(const std::string& text, LogLine* out) {
+    *out = LogLine();
+    scan::Line l{text};
+    if (!l.number(nullptr) || !l.literal(":") || !l.number(&out->line) || !l.literal("(")) return false;
+    const std::size_t column = l.at;
+    if (!l.number(nullptr)) return false;
+    out->after = ":" + text.substr(column, l.at - column);
+    if (!l.literal("):")) return false;
+    l.spaces();
+    return l.restOfLine(&out->message);
+}
+
+// NVIDIA: "0(12) : error C0000: ...".
+bool parseNvidiaLine(const std::string& text, LogLine* out) {
+    *out = LogLine();
+    scan::Line l{text};
+    if (!l.number(nullptr) || !l.literal("(") || !l.number(&out->line) || !l.literal(")")) return false;
+    l.spaces();
+    if (!l.literal(":")) return false;
+    l.spaces();
+    return l.restOfLine(&out->message);
+}
+
+// ANGLE (WebGL in Chromium) and glslang: "ERROR: 0:12: 'x' : undeclared identifier".
+bool parseAngleLine(const std::string& text, LogLine* out) {
+    *out = LogLine();
+    scan::Line l{text};
+    const bool error = l.literal("ERROR");
+    if (!error && !l.literal("WARNING")) return false;
+    if (!l.literal(":")) return false;
+    l.spaces();
+    if (!l.number(nullptr) || !l.literal(":") || !l.number(&out->line) || !l.literal(":")) return false;
+    l.spaces();
+    if (!l.restOfLine(&out->message)) return false;
+    out->message.insert(0, error ? "error: " : "warning: ");
+    return true;
+}
+
+}  // namespace
+
 std::string PreprocessedShader::mapLog(const std::string& log) const {
-    static const std::regex mesa(R"(^(\d+):(\d+)\((\d+)\):\s*(.*)$)");
-    static const std::regex nvidia(R"(^(\d+)\((\d+)\)\s*:\s*(.*)$)");
-    // ANGLE (WebGL in Chromium) and glslang: "ERROR: 0:12: 'x' : undeclared identifier"
-    static const std::regex angle(R"(^(ERROR|WARNING):\s*(\d+):(\d+):\s*(.*)$)");
     std::istringstream in(log);
     std::string line, result;
     while (std::getline(in, line)) {
         if (line.empty()) continue;
-        std::smatch m;
-        // "file:line" from an encoded line number (see kLineStride).
-        auto where = [&](const std::string& encoded) {
-            const long n = std::stol(encoded);
-            const std::size_t id = std::size_t(n / kLineStride);
-            return (id < files.size() ? files[id] : "<source " + std::to_string(id) + ">") + ":" +
-                   std::to_string(n % kLineStride);
-        };
-        if (std::regex_match(line, m, mesa))
-            line = where(m[2]) + ":" + std::string(m[3]) + ": " + std::string(m[4]);
-        else if (std::regex_match(line, m, nvidia))
-            line = where(m[2]) + ": " + std::string(m[3]);
-        else if (std::regex_match(line, m, angle))
-            line = where(m[3]) + ": " + (m[1] == "ERROR" ? "error: " : "warning: ") + std::string(m[4]);
+        LogLine parsed;
+        if (parseMesaLine(line, &parsed) || parseNvidiaLine(line, &parsed) || parseAngleLine(line, &parsed)) {
+            const std::size_t id = std::size_t(parsed.line / kLineStride);
+            line = (id < files.size() ? files[id] : "<source " + std::to_string(id) + ">") + ":" +
+                   std::to_string(parsed.line % kLineStride) + parsed.after + ": " + parsed.message;
+        }
         result += (result.empty() ? "" : "\n") + line;
     }
     return result.empty() ? "shader compilation failed with an empty log" : result;

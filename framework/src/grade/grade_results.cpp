@@ -9,6 +9,7 @@
 
 #include "html_text.h"
 #include "voxlab/grader.h"
+#include "voxlab/untrusted_text.h"
 
 namespace voxlab {
 
@@ -16,9 +17,17 @@ using nlohmann::json;
 
 namespace {
 
+// `s` (valid UTF-8) in `width` columns: cut at a character's start with "~",
+// or padded with spaces (counted in characters).
 std::string pad(std::string s, std::size_t width) {
-    if (s.size() > width) s = s.substr(0, width - 1) + "~";
-    return s + std::string(width - s.size(), ' ');
+    std::size_t characters = 0, cut = s.size();
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        if ((static_cast<unsigned char>(s[i]) & 0xC0) == 0x80) continue;
+        if (characters == width - 1 && cut == s.size()) cut = i;
+        ++characters;
+    }
+    if (characters > width) return s.substr(0, cut) + "~";
+    return s + std::string(width - characters, ' ');
 }
 
 // Hundredths of a point, as Gradescope shows them.
@@ -209,7 +218,9 @@ std::vector<Test> stageTests(const json& stage) {
             if (!setup.empty()) output += "\nScene" + (file.empty() ? "" : " " + file) + ": " + setup;
             const std::string inputs = html::checkInputsText(html::object(item, "inputs"));
             if (!inputs.empty() && item.value("status", "") != "passed") output += "\nInputs: " + inputs;
-            for (const json& ex : item.value("examples", json::array())) output += "\n  " + ex.get<std::string>();
+            for (const json& ex : html::array(item, "examples"))
+                output += "\n  " + (ex.is_string() ? ex.get<std::string>()
+                                                   : ex.dump(-1, ' ', false, json::error_handler_t::replace));
             const std::string visibility =
                 item.value("visibility", item.value("hidden", false) ? "after_due_date" : "visible");
             add(title + ": " + item.value("name", "?"), item, output, visibility,
@@ -299,6 +310,7 @@ json gradescopeResults(const json& report, const std::string& reportDir) {
         output += "\nLate: " + report["late"].value("message", "") + summary;
     }
     if (report.contains("layout_note")) output += "\nUpload: " + report.value("layout_note", "") + ".";
+    if (html::text(report, "status") == "error") output += "\nNot graded: " + html::text(report, "message") + ".";
     return {{"score", score}, {"output", output}, {"visibility", "visible"}, {"stdout_visibility", "visible"},
             {"tests", tests}};
 }
@@ -306,16 +318,17 @@ json gradescopeResults(const json& report, const std::string& reportDir) {
 std::string summaryTable(const json& report) {
     std::string out = pad("stage", 15) + pad("status", 17) + pad("score", 13) + "message\n";
     out += std::string(100, '-') + "\n";
-    for (const json& stage : report.value("stages", json::array())) {
+    for (const json& stage : html::array(report, "stages")) {
         char score[32];
-        std::snprintf(score, sizeof score, "%5.2f / %-5.4g", stage.value("score", 0.0), stage.value("max_score", 0.0));
-        out += pad(stage.value("stage", "?"), 15) + pad(stage.value("status", "?"), 17) + pad(score, 13) +
-               stage.value("message", "") + "\n";
+        std::snprintf(score, sizeof score, "%5.2f / %-5.4g", html::number(stage, "score").value_or(0.0),
+                      html::number(stage, "max_score").value_or(0.0));
+        out += pad(terminalLine(html::text(stage, "stage"), 64), 15) + pad(terminalLine(html::text(stage, "status"), 64), 17) +
+               pad(score, 13) + terminalLine(html::text(stage, "message")) + "\n";
     }
     out += std::string(100, '-') + "\n";
     char total[96];
-    std::snprintf(total, sizeof total, "total %.2f / %.4g points", report.value("score", 0.0),
-                  report.value("max_score", 0.0));
+    std::snprintf(total, sizeof total, "total %.2f / %.4g points", html::number(report, "score").value_or(0.0),
+                  html::number(report, "max_score").value_or(0.0));
     return out + pad("", 15) + total + "\n";
 }
 

@@ -21,6 +21,7 @@
 #include "voxlab/error.h"
 #include "voxlab/html_report.h"
 #include "voxlab/stage_library.h"
+#include "voxlab/untrusted_text.h"
 
 namespace voxlab {
 
@@ -58,10 +59,10 @@ public:
         const int width = 30, filled = total_ ? width * count_ / total_ : width;
         if (tty_) {
             std::fprintf(stderr, "\r[%s%s] %d/%d  %-40.40s", std::string(filled, '#').c_str(),
-                         std::string(width - filled, '.').c_str(), count_, total_, what.c_str());
+                         std::string(width - filled, '.').c_str(), count_, total_, terminalLine(what, 40).c_str());
             if (count_ == total_) std::fprintf(stderr, "\n");
         } else if (count_ == total_ || (count_ * 10 / total_) != ((count_ - 1) * 10 / total_)) {
-            std::fprintf(stderr, "%d/%d done (%s)\n", count_, total_, what.c_str());
+            std::fprintf(stderr, "%d/%d done (%s)\n", count_, total_, terminalLine(what, 200).c_str());
         }
     }
 
@@ -129,7 +130,8 @@ void renderExpectedStage(const std::string& stage, const GraderOptions& options)
                             outcome.output.substr(gl + 4, outcome.output.find('\n', gl) - gl - 4) + "\n");
     for (const auto& [name, image] : outcome.results.images) savePng(image, (out / (name + ".png")).string());
     for (const auto& [name, result] : outcome.results.checks)
-        writeFileAtomically((out / "checks" / (name + ".json")).string(), result.dump() + "\n");
+        writeFileAtomically((out / "checks" / (name + ".json")).string(),
+                            result.dump(-1, ' ', false, json::error_handler_t::replace) + "\n");
 }
 
 // The reference's C++ stages, compiled for the stage runs (stage_job.cpp
@@ -233,6 +235,108 @@ void renderExpectedOutputs(const GraderOptions& options) {
     renderExpectedWithLibrary(options);
 }
 
+namespace {
+
+// One stage of one submission graded; its entry of report.json.
+json gradeStage(const Submission& sub, const std::string& stage, const GraderOptions& options) {
+    json entry;
+    try {
+        const StageManifest manifest = gradedManifest(stage, options);
+        const fs::path report = absolute(sub.reportDir);
+        const StageRun run{stage, absolute(sub.folder), (report / ".work" / stage).string(), options.isolateStage};
+        fs::remove_all(report / stage);
+        if (!fs::is_directory(fs::path(sub.folder) / stage)) {
+            entry = {{"stage", stage}, {"title", manifest.title}, {"score", 0.0},
+                     {"max_score", manifest.points}, {"status", "not_implemented"},
+                     {"message", "the submission has no folder " + stage + "/"}};
+        } else {
+            const RunOutcome outcome = grading::runStage(run, manifest, options);
+            entry = grading::scoreStage(run, outcome, manifest, options, (report / stage).string());
+        }
+        fs::remove_all(run.workDir);
+    } catch (const std::exception& e) {
+        entry = {{"stage", stage}, {"score", 0.0}, {"max_score", 0.0}, {"status", "error"},
+                 {"message", safeText(std::string("grader error: ") + e.what())}};
+    } catch (...) {
+        entry = {{"stage", stage}, {"score", 0.0}, {"max_score", 0.0}, {"status", "error"},
+                 {"message", "grader error (not a std::exception)"}};
+    }
+    return entry;
+}
+
+// The stages of a submission that cannot be graded: each an error worth
+// nothing, out of its points, with the reason.
+json ungradedStages(const std::vector<std::string>& stages, const std::string& why, const GraderOptions& options) {
+    json out = json::array();
+    for (const std::string& stage : stages) {
+        json entry = {{"stage", stage}, {"score", 0.0}, {"max_score", 0.0}, {"status", "error"}, {"message", why}};
+        try {
+            const StageManifest manifest = gradedManifest(stage, options);
+            entry["title"] = manifest.title;
+            entry["max_score"] = manifest.points;
+        } catch (const std::exception&) {  // the stage's own error shows where it is graded
+        }
+        out.push_back(entry);
+    }
+    return out;
+}
+
+// A submission's report.json, from its stages' entries (null: not asked for).
+json submissionReport(const Submission& sub, const std::vector<json>& results, double seconds,
+                      const std::vector<std::string>& stages, const GraderOptions& options) {
+    json report = {{"submission", safeText(absolute(sub.upload.empty() ? sub.folder : sub.upload), kMaxLogBytes)},
+                   {"name", safeText(sub.name, kMaxNameBytes)}, {"graded_at", isoTime()},
+                   {"mode", options.shipped || !options.isolateStage ? "check" : "grade"},
+                   {"against", options.shipped ? "shipped" : "reference"},
+                   {"sandbox", sandboxLayers()},
+                   {"sandbox_missing", sandboxMissingLayers()},
+                   {"elapsed_s", seconds}};
+    json graded = json::array();
+    for (const json& stage : results)
+        if (!stage.is_null()) graded.push_back(stage);
+    if (!sub.problem.empty()) {
+        report["status"] = "error";
+        report["message"] = safeText(sub.problem);
+        std::vector<std::string> asked;
+        for (const std::string& stage : stages)
+            if (sub.stages.empty() || std::count(sub.stages.begin(), sub.stages.end(), stage)) asked.push_back(stage);
+        graded = ungradedStages(asked, report["message"], options);
+    }
+    double score = 0.0, maxScore = 0.0;
+    for (const json& stage : graded) {
+        score += stage.value("score", 0.0);
+        maxScore += stage.value("max_score", 0.0);
+    }
+    report["score"] = score;
+    report["max_score"] = maxScore;
+    // The GL the stages ran on (each stage names it; the worker printed it).
+    for (const json& stage : graded)
+        if (stage.contains("gl") && stage["gl"].is_string() && !report.contains("machine"))
+            report["machine"] = safeText(stage["gl"].get<std::string>(), 200);
+    report["stages"] = graded;
+    if (!sub.layoutNote.empty()) report["layout_note"] = safeText(sub.layoutNote);
+    return report;
+}
+
+// Writes report.json, results.json and index.html; a failure makes the
+// report an error that says so (the batch goes on).
+void writeReports(json& report, const Submission& sub, const GraderOptions& options) {
+    try {
+        if (options.adjustReport) options.adjustReport(report);
+        fs::create_directories(sub.reportDir);
+        fs::remove_all(fs::path(sub.reportDir) / ".work");
+        writeFileAtomically((fs::path(sub.reportDir) / "report.json").string(), reportJsonText(report));
+        writeFileAtomically((fs::path(sub.reportDir) / "results.json").string(),
+                            reportJsonText(gradescopeResults(report, sub.reportDir)));
+        writeHtmlReport(report, sub.reportDir);
+    } catch (const std::exception& e) {
+        report["status"] = "error";
+        report["message"] = safeText(std::string("the report cannot be written: ") + e.what());
+    }
+}
+
+}  // namespace
+
 std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, const GraderOptions& given) {
     GraderOptions options = given;
     options.referenceRoot = absolute(options.referenceRoot);
@@ -245,14 +349,15 @@ std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, c
 
     struct Job {
         std::size_t submission;
-        std::string stage;
+        std::size_t stage;
     };
     std::vector<Job> jobs;
     for (std::size_t s = 0; s < submissions.size(); ++s)
-        for (const std::string& stage : stages)
-            if (submissions[s].stages.empty() || std::count(submissions[s].stages.begin(),
-                                                            submissions[s].stages.end(), stage))
-                jobs.push_back({s, stage});
+        for (std::size_t k = 0; k < stages.size(); ++k)
+            if (submissions[s].problem.empty() &&
+                (submissions[s].stages.empty() ||
+                 std::count(submissions[s].stages.begin(), submissions[s].stages.end(), stages[k])))
+                jobs.push_back({s, k});
     std::vector<std::vector<json>> results(submissions.size(), std::vector<json>(stages.size()));
     std::vector<double> seconds(submissions.size(), 0.0);
     std::mutex mutex;
@@ -261,67 +366,21 @@ std::vector<json> gradeSubmissions(const std::vector<Submission>& submissions, c
         const Job& job = jobs[i];
         const Submission& sub = submissions[job.submission];
         const auto start = std::chrono::steady_clock::now();
-        const std::size_t stageIndex =
-            std::find(stages.begin(), stages.end(), job.stage) - stages.begin();
-        json entry;
-        try {
-            const StageManifest manifest = gradedManifest(job.stage, options);
-            const fs::path report = absolute(sub.reportDir);
-            const StageRun run{job.stage, absolute(sub.folder), (report / ".work" / job.stage).string(),
-                               options.isolateStage};
-            fs::remove_all(report / job.stage);
-            if (!fs::is_directory(fs::path(sub.folder) / job.stage)) {
-                entry = {{"stage", job.stage}, {"title", manifest.title}, {"score", 0.0},
-                         {"max_score", manifest.points}, {"status", "not_implemented"},
-                         {"message", "the submission has no folder " + job.stage + "/"}};
-            } else {
-                const RunOutcome outcome = grading::runStage(run, manifest, options);
-                entry = grading::scoreStage(run, outcome, manifest, options, (report / job.stage).string());
-            }
-            fs::remove_all(run.workDir);
-        } catch (const std::exception& e) {
-            entry = {{"stage", job.stage}, {"score", 0.0}, {"max_score", 0.0}, {"status", "error"},
-                     {"message", std::string("grader error: ") + e.what()}};
-        }
+        json entry = gradeStage(sub, stages[job.stage], options);
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         entry["elapsed_s"] = elapsed;
         {
             std::lock_guard<std::mutex> lock(mutex);
-            results[job.submission][stageIndex] = entry;
+            results[job.submission][job.stage] = entry;
             seconds[job.submission] += elapsed;
         }
-        progress.done(sub.name + ": " + job.stage);
+        progress.done(sub.name + ": " + stages[job.stage]);
     });
 
     std::vector<json> reports;
     for (std::size_t s = 0; s < submissions.size(); ++s) {
-        const Submission& sub = submissions[s];
-        json report = {{"submission", absolute(sub.folder)}, {"name", sub.name}, {"graded_at", isoTime()},
-                       {"mode", options.shipped || !options.isolateStage ? "check" : "grade"},
-                       {"against", options.shipped ? "shipped" : "reference"},
-                       {"sandbox", sandboxLayers()},
-                       {"sandbox_missing", sandboxMissingLayers()},
-                       {"elapsed_s", seconds[s]}};
-        double score = 0.0, maxScore = 0.0;
-        json graded = json::array();
-        for (const json& stage : results[s]) {
-            if (stage.is_null()) continue;  // not asked for
-            score += stage.value("score", 0.0);
-            maxScore += stage.value("max_score", 0.0);
-            graded.push_back(stage);
-        }
-        report["score"] = score;
-        report["max_score"] = maxScore;
-        for (const json& stage : graded)
-            if (stage.contains("gl") && !report.contains("machine")) report["machine"] = stage["gl"];
-        report["stages"] = graded;
-        if (!sub.layoutNote.empty()) report["layout_note"] = sub.layoutNote;
-        if (options.adjustReport) options.adjustReport(report);
-        fs::remove_all(fs::path(sub.reportDir) / ".work");
-        writeFileAtomically((fs::path(sub.reportDir) / "report.json").string(), report.dump(2) + "\n");
-        writeFileAtomically((fs::path(sub.reportDir) / "results.json").string(),
-                            gradescopeResults(report, sub.reportDir).dump(2) + "\n");
-        writeHtmlReport(report, sub.reportDir);
+        json report = submissionReport(submissions[s], results[s], seconds[s], stages, options);
+        writeReports(report, submissions[s], options);
         reports.push_back(report);
     }
     return reports;

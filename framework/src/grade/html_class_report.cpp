@@ -2,6 +2,7 @@
 // html_report.h): a row per submission, a column per stage, each row linking
 // to the submission's own report folder.
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "html_text.h"
 #include "voxlab/atomic_file.h"
 #include "voxlab/html_report.h"
+#include "voxlab/untrusted_text.h"
 
 namespace voxlab {
 namespace {
@@ -146,7 +148,8 @@ std::string row(const json& submission, std::vector<StageColumn>& columns, Total
     if (!status.empty())
         out += "<div class=\"prob\">" + html::badge(status) + (message.empty() ? "" : " " + html::escape(message)) +
                "</div>";
-    out += problemsBlock(submission) + "</td>";
+    // Not graded at all: the reason above says it once, not again for every stage.
+    out += (status == "error" ? std::string() : problemsBlock(submission)) + "</td>";
     out += "<td class=\"num total-cell\" data-sort=\"" + sortKey(score) + "\">" +
            html::escape(html::formatScore(score, maxScore)) + html::scoreBar(score, maxScore) + "</td>";
 
@@ -197,7 +200,35 @@ std::string problemsSummary(const json& results) {
     return out;
 }
 
-void writeClassHtmlReport(const json& gradebook, const std::string& dir) {
+std::string gradebookCsv(const std::vector<json>& reports) {
+    std::vector<std::string> stages;  // every stage of any report, in the order they first appear
+    for (const json& r : reports)
+        for (const json& s : html::array(r, "stages"))
+            if (std::find(stages.begin(), stages.end(), html::text(s, "stage")) == stages.end())
+                stages.push_back(html::text(s, "stage"));
+    std::string csv = "name,score,max_score";
+    for (const std::string& stage : stages) csv += "," + csvCell(stage);
+    csv += ",problems\n";
+    for (const json& r : reports) {
+        char total[64];
+        std::snprintf(total, sizeof total, "%.2f,%.2f", html::number(r, "score").value_or(0.0),
+                      html::number(r, "max_score").value_or(0.0));
+        csv += csvCell(html::text(r, "name")) + "," + total;
+        for (const std::string& stage : stages) {
+            const json* s = findStage(r, stage);
+            char score[32] = "";
+            if (s) std::snprintf(score, sizeof score, "%.2f", html::number(*s, "score").value_or(0.0));
+            csv += std::string(",") + score;
+        }
+        std::string problems = problemsSummary(r);  // worst first (html_report.h)
+        if (html::text(r, "status") == "error")
+            problems = "not graded: " + html::text(r, "message");
+        csv += "," + csvCell(problems) + "\n";
+    }
+    return csv;
+}
+
+std::string classHtmlReportPage(const json& gradebook) {
     const json& submissions = gradebook.is_array() ? gradebook : html::array(gradebook, "submissions");
     std::vector<StageColumn> columns = stageColumns(submissions);
     std::string title = html::text(gradebook, "title");
@@ -248,8 +279,11 @@ void writeClassHtmlReport(const json& gradebook, const std::string& dir) {
             "points (the worked example) have no column. Click a column heading to sort by it.</p></section></main>\n"
             "<footer>Written by voxlab grade. Each name links to that submission's report.</footer>\n";
 
-    writeFileAtomically((std::filesystem::path(dir) / "index.html").string(),
-                        html::page(title, body, html::sortableTableScript));
+    return html::page(title, body, html::sortableTableScript);
+}
+
+void writeClassHtmlReport(const json& gradebook, const std::string& dir) {
+    writeFileAtomically((std::filesystem::path(dir) / "index.html").string(), classHtmlReportPage(gradebook));
 }
 
 }  // namespace voxlab

@@ -300,9 +300,12 @@ std::string checksTable(const json& checks) {
             out += std::string("<details") + (status == "passed" ? "" : " open") + "><summary>" +
                    std::to_string(examples.size()) + (examples.size() == 1 ? " example" : " examples") +
                    "</summary><ul class=\"examples\">";
-            for (const json& example : examples)
-                out += "<li><code>" + html::escape(example.is_string() ? example.get<std::string>() : example.dump()) +
-                       "</code></li>";
+            for (const json& example : examples) {
+                const std::string text = example.is_string()
+                                             ? example.get<std::string>()
+                                             : example.dump(-1, ' ', false, json::error_handler_t::replace);
+                out += "<li><code>" + html::escape(text) + "</code></li>";
+            }
             out += "</ul></details>";
         }
         out += "</td></tr>\n";
@@ -420,7 +423,7 @@ std::string summaryTable(const json& stages, const std::vector<std::string>& ids
 
 }  // namespace
 
-void writeHtmlReport(const json& results, const std::string& reportDir) {
+std::string htmlReportPage(const json& results, const std::string& reportDir) {
     const json& stages = html::array(results, "stages");
     IdMaker ids;
     std::vector<std::string> stageIds;
@@ -434,9 +437,12 @@ void writeHtmlReport(const json& results, const std::string& reportDir) {
     body += "</main>\n<footer>Written by voxlab grade. This folder is self-contained and works offline.</footer>\n";
 
     const std::string name = html::text(results, "name");
-    writeFileAtomically((fs::path(reportDir) / "index.html").string(),
-                        html::page((name.empty() ? std::string("Submission") : name) + " \u2013 voxlab report", body,
-                                   html::compareSliderScript));
+    return html::page((name.empty() ? std::string("Submission") : name) + " \u2013 voxlab report", body,
+                      html::compareSliderScript);
+}
+
+void writeHtmlReport(const json& results, const std::string& reportDir) {
+    writeFileAtomically((fs::path(reportDir) / "index.html").string(), htmlReportPage(results, reportDir));
 }
 
 }  // namespace voxlab

@@ -2,6 +2,8 @@
 // reports (they are saved with writeFileAtomically).
 #include "html_text.h"
 
+#include "voxlab/untrusted_text.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -14,7 +16,7 @@ using nlohmann::json;
 std::string escape(std::string_view text) {
     std::string out;
     out.reserve(text.size());
-    for (char c : text) {
+    for (char c : safeText(text, std::string::npos)) {
         switch (c) {
             case '&': out += "&amp;"; break;
             case '<': out += "&lt;"; break;

@@ -12,7 +12,8 @@
 namespace voxlab::html {
 
 // Text made safe for HTML element content and quoted attribute values:
-// & < > " ' become character references.
+// & < > " ' become character references, and invalid UTF-8 becomes U+FFFD
+// (safeText in untrusted_text.h).
 std::string escape(std::string_view text);
 
 // A relative path made safe for an href or src attribute: every byte outside

@@ -86,6 +86,7 @@
 #include "voxlab/error.h"
 #include "voxlab/grader.h"
 #include "voxlab/grading.h"
+#include "voxlab/untrusted_text.h"
 
 namespace voxlab {
 
@@ -773,7 +774,7 @@ std::string similarityHtml(const SimilarityReport& report) {
 
 void writeSimilarityReport(const SimilarityReport& report, const std::string& dir) {
     fs::create_directories(dir);
-    writeFileAtomically((fs::path(dir) / "similarity.json").string(), similarityJson(report).dump(2) + "\n");
+    writeFileAtomically((fs::path(dir) / "similarity.json").string(), reportJsonText(similarityJson(report)));
     writeFileAtomically((fs::path(dir) / "similarity.html").string(), similarityHtml(report));
 }
 

@@ -10,6 +10,7 @@
 #include "voxlab/function_checks.h"
 #include "voxlab/image.h"
 #include "voxlab/scene.h"
+#include "voxlab/untrusted_text.h"
 
 namespace voxlab::grading {
 
@@ -36,12 +37,14 @@ void replaceAll(std::string& s, const std::string& from, const std::string& to) 
 
 // Compiler logs name files by absolute path; a student reads them relative
 // to their own folder ("mip/mip.glsl:14:9"), framework files relative to
-// the project ("shaders/voxlab/ray.glsl").
-std::string relativePaths(std::string text, const StageRun& run) {
+// the project ("shaders/voxlab/ray.glsl"). What the stage's build and run
+// printed is the submission's text: it comes back as safe text, at most
+// `maxBytes` long (untrusted_text.h).
+std::string relativePaths(std::string text, const StageRun& run, std::size_t maxBytes = kMaxLogBytes) {
     replaceAll(text, (fs::path(run.workDir) / "impl").string() + "/", "");
     replaceAll(text, fs::path(run.implementationRoot).lexically_normal().string() + "/", "");
     replaceAll(text, fs::path(projectRoot()).lexically_normal().string() + "/", "");
-    return text;
+    return safeText(text, maxBytes);
 }
 
 std::string firstLine(const std::string& s) { return s.substr(0, s.find('\n')); }
@@ -141,14 +144,14 @@ json scoreScene(const GradedScene& scene, const StageRun& run, const RunOutcome&
             entry["images"]["difference"] = base + ".difference.png";
             entry.update(sceneVerdict(m, scene.tolerance, credit));
         } else if (error != outcome.results.errors.end()) {
-            throw Error(firstLine(relativePaths(error->second.value("message", "error"), run)));
+            throw Error(firstLine(relativePaths(error->second.value("message", "error"), run, kMaxMessageBytes)));
         } else {
             throw Error(outcome.results.problem.empty() ? "no image: the stage's process " + ended + " before this scene"
                                                         : outcome.results.problem);
         }
     } catch (const std::exception& e) {
         entry["status"] = "error";
-        entry["message"] = e.what();
+        entry["message"] = safeText(e.what());
     }
     return entry;
 }
@@ -170,17 +173,19 @@ json scoreCheck(const GradedCheck& check, const StageRun& run, const RunOutcome&
             *credit = c.cases > 0 ? creditForFailedCases(double(c.failed) / c.cases) : 0.0;
             entry["status"] = c.failed == 0 && c.cases > 0 ? "passed" : "failed";
             entry["message"] = c.summary;
-            entry["examples"] = c.examples;
+            json examples = json::array();  // built from the values the stage returned
+            for (const std::string& example : c.examples) examples.push_back(safeText(example));
+            entry["examples"] = examples;
             if (!c.inputs.empty()) entry["inputs"] = c.inputs;
         } else if (error != outcome.results.errors.end()) {
-            throw Error(firstLine(relativePaths(error->second.value("message", "error"), run)));
+            throw Error(firstLine(relativePaths(error->second.value("message", "error"), run, kMaxMessageBytes)));
         } else {
             throw Error(outcome.results.problem.empty() ? "no result: the stage's process " + ended + " before this check"
                                                         : outcome.results.problem);
         }
     } catch (const std::exception& e) {
         entry["status"] = "error";
-        entry["message"] = e.what();
+        entry["message"] = safeText(e.what());
     }
     return entry;
 }
@@ -198,19 +203,19 @@ std::pair<std::string, std::string> stageStatus(const RunOutcome& outcome, const
             ++failed;
             if (e["status"] == "error" && firstError.empty()) firstError = e["message"];
         }
-    if (!outcome.problem.empty()) return {outcome.problemKind, outcome.problem};
+    if (!outcome.problem.empty()) return {outcome.problemKind, safeText(outcome.problem)};
     if (!compileLog.empty()) return {"compile_error", errorLine(compileLog)};
     if (!outcome.finished && outcome.ended.rfind("timed out", 0) == 0)
         return {"timeout", "the stage " + outcome.ended + " (an endless loop?); scenes finished before it are scored"};
     for (const auto& [key, error] : outcome.results.errors)  // the worker's runaway-loop check
-        if (error.value("kind", "") == "runaway") return {"timeout", error.value("message", "a loop ran away")};
+        if (error.value("kind", "") == "runaway") return {"timeout", safeText(error.value("message", "a loop ran away"))};
     if (!outcome.finished && outcome.ended.rfind("crashed", 0) == 0)
         return {"crashed", "the stage's process " + outcome.ended};
     for (const auto& [key, error] : outcome.results.errors)  // a C++ stage's host
-        if (error.value("kind", "") == "crashed") return {"crashed", error.value("message", "crashed")};
+        if (error.value("kind", "") == "crashed") return {"crashed", safeText(error.value("message", "crashed"))};
     if (!outcome.stubs.empty()) {
         std::string names;
-        for (const std::string& s : outcome.stubs) names += (names.empty() ? "" : ", ") + s;
+        for (const std::string& s : outcome.stubs) names += (names.empty() ? "" : ", ") + safeText(s, kMaxNameBytes);
         return {"not_implemented", names + (outcome.stubs.size() == 1 ? " is" : " are") + " not yet implemented"};
     }
     if (allPassed) return {"passed", "every scene and check within its tolerance"};
@@ -227,7 +232,9 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
     if (!manifest.about.empty()) stage["about"] = manifest.about;
     const fs::path expected = fs::path(options.expectedDir) / manifest.stage, report = reportStageDir;
     fs::create_directories(report);
-    stage["not_implemented"] = outcome.stubs;
+    json stubs = json::array();
+    for (const std::string& s : outcome.stubs) stubs.push_back(safeText(s, kMaxNameBytes));
+    stage["not_implemented"] = stubs;
     std::string compileLog = outcome.compiled ? "" : relativePaths(outcome.compileLog, run);
     for (const auto& [key, error] : outcome.results.errors)
         if (error.value("kind", "") == "compile_error" && compileLog.empty())
@@ -238,7 +245,7 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
     for (const GradedScene& scene : manifest.scenes) {
         double c = 0.0;
         json entry = scoreScene(scene, run, outcome, expected, report, outcome.ended, &c);
-        if (!ran) entry["message"] = outcome.problem;
+        if (!ran) entry["message"] = safeText(outcome.problem);
         entry["scene_file"] = sceneFile(scene.scenePath, options.referenceRoot);
         weightSum += scene.weight;
         credit += scene.weight * c;
@@ -248,7 +255,7 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
     for (const GradedCheck& check : manifest.checks) {
         double c = 0.0;
         json entry = scoreCheck(check, run, outcome, expected, outcome.ended, &c);
-        if (!ran) entry["message"] = outcome.problem;
+        if (!ran) entry["message"] = safeText(outcome.problem);
         weightSum += check.weight;
         credit += check.weight * c;
         entry["credit"] = c;
@@ -278,7 +285,7 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
     stage["sandbox"] = outcome.sandbox;
     // The worker's last line names the GL it rendered with.
     if (const std::size_t gl = outcome.output.rfind("gl: "); gl != std::string::npos)
-        stage["gl"] = outcome.output.substr(gl + 4, outcome.output.find('\n', gl) - gl - 4);
+        stage["gl"] = safeText(outcome.output.substr(gl + 4, outcome.output.find('\n', gl) - gl - 4), 200);
     if (!compileLog.empty()) stage["log"] = compileLog;
     auto [status, message] = stageStatus(outcome, compileLog, scenes, checks);
     // The worker's output (what a C++ stage printed, a crash) helps when something went wrong.

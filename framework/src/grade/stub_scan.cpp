@@ -5,10 +5,12 @@
 // whose body still holds that call is reported by name, so that a student
 // reads "mip_ray is not yet implemented" rather than a failed image.
 #include <algorithm>
+#include <cctype>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 
+#include "../io/line_scan.h"
 #include "voxlab/grading.h"
 #include "voxlab/render_engine.h"
 
@@ -16,17 +18,55 @@ namespace voxlab {
 
 namespace {
 
+// A character a signature may hold before the function's name: a return
+// type such as "std::vector<glm::vec3>", "const float*" or "int&".
+bool inSignature(char c) { return scan::isWord(c) || scan::isSpace(c) || std::strchr(":<>,*&", c); }
+
+// The function's name in a line that starts a signature ("float mip_ray(",
+// "std::vector<glm::vec3> planeBoxPolygon("): the first word, after the
+// line's first character and before any character a signature cannot hold,
+// that is followed by '(' (spaces allowed between). "" when there is none.
+std::string signatureName(const std::string& line) {
+    if (line.empty() || !(std::isalpha(static_cast<unsigned char>(line[0])) || line[0] == '_') ||
+        static_cast<unsigned char>(line[0]) >= 0x80)
+        return "";
+    for (std::size_t k = 1; k < line.size() && inSignature(line[k - 1]); ++k) {
+        if (!scan::isWord(line[k]) || scan::isWord(line[k - 1])) continue;  // not the start of a word
+        scan::Line l{line, k};
+        std::string name;
+        l.identifier(&name);
+        l.spaces();
+        if (l.literal("(")) return name;
+    }
+    return "";
+}
+
 // The name of the function whose signature starts at column 0 above `line`.
 std::string enclosingFunction(const std::vector<std::string>& lines, std::size_t line) {
-    static const std::regex signature(R"(^[A-Za-z_][\w:<>,\s\*&]*?\b(\w+)\s*\()");
     for (std::size_t k = line + 1; k-- > 0;) {
         const std::string& l = lines[k];
         if (l.empty() || std::isspace(static_cast<unsigned char>(l[0])) || l.rfind("//", 0) == 0 || l[0] == '#')
             continue;
-        std::smatch m;
-        if (std::regex_search(l, m, signature)) return m[1];
+        const std::string name = signatureName(l);
+        if (!name.empty()) return name;
     }
     return "";
+}
+
+// Whether a line starts (after spaces) with the starter code's stub:
+// "not_implemented();" (GLSL) or "throw NotImplemented(" (C++).
+bool isStubCall(const std::string& line) {
+    scan::Line l{line};
+    l.spaces();
+    if (l.literal("not_implemented")) {
+        l.spaces();
+        if (!l.literal("(")) return false;
+        l.spaces();
+        if (!l.literal(")")) return false;
+        l.spaces();
+        return l.literal(";");
+    }
+    return l.literal("throw") && l.spaces() && l.literal("NotImplemented") && (l.spaces(), l.literal("("));
 }
 
 }  // namespace
@@ -41,14 +81,13 @@ std::vector<std::string> unimplementedFunctions(const std::string& stageFolder) 
             files.push_back(entry.path());
     }
     std::sort(files.begin(), files.end());
-    static const std::regex stubCall(R"(^\s*(not_implemented\s*\(\s*\)\s*;|throw\s+NotImplemented\s*\())");
     std::vector<std::string> names;
     for (const fs::path& file : files) {
         std::ifstream in(file);
         std::vector<std::string> lines;
         for (std::string l; std::getline(in, l);) lines.push_back(l);
         for (std::size_t i = 0; i < lines.size(); ++i) {
-            if (!std::regex_search(lines[i], stubCall)) continue;
+            if (!isStubCall(lines[i])) continue;
             const std::string name = enclosingFunction(lines, i);
             if (!name.empty() && std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
         }

@@ -9,6 +9,7 @@
 
 #include "voxlab/error.h"
 #include "voxlab/fd_io.h"
+#include "voxlab/untrusted_text.h"
 
 namespace voxlab {
 
@@ -61,7 +62,9 @@ std::size_t parseRecord(const std::string& stream, std::size_t at, const StageMa
         r.checks.emplace(name, json::parse(payload, payload + bytes));
     } else {
         if (bytes != 0) throw Error("an error record carries no payload");
-        r.errors[key] = {{"kind", h.at("kind").get<std::string>()}, {"message", h.at("message").get<std::string>()}};
+        // The worker's words, as data: a compile error's message is the whole log.
+        r.errors[key] = {{"kind", safeText(h.at("kind").get<std::string>(), 64)},
+                         {"message", safeText(h.at("message").get<std::string>(), kMaxLogBytes)}};
     }
     return eol + 1 + bytes;
 }
@@ -74,7 +77,8 @@ WorkerResults parseWorkerResults(const std::string& stream, const StageManifest&
         try {
             at = parseRecord(stream, at, manifest, r);
         } catch (const std::exception& e) {
-            r.problem = std::string("the worker's results are malformed: ") + e.what();
+            // A parser's message may quote the bytes it could not read.
+            r.problem = safeText(std::string("the worker's results are malformed: ") + e.what());
             break;
         }
     }
@@ -82,7 +86,9 @@ WorkerResults parseWorkerResults(const std::string& stream, const StageManifest&
 }
 
 void WorkerResultWriter::record(const json& header, const std::string& payload) {
-    const std::string text = header.dump() + "\n" + payload;
+    // A message may quote the stage's own bytes (a compiler's log of an
+    // #error line in Latin-1): invalid UTF-8 is sent as U+FFFD, not thrown on.
+    const std::string text = header.dump(-1, ' ', false, json::error_handler_t::replace) + "\n" + payload;
     if (const int err = writeAll(fd_, text))
         throw Error(std::string("cannot send results to the grader (fd 3): ") + std::strerror(err));
 }
@@ -97,7 +103,7 @@ void WorkerResultWriter::image(const std::string& scene, const Image& image) {
 }
 
 void WorkerResultWriter::check(const std::string& name, const json& result) {
-    const std::string text = result.dump();
+    const std::string text = result.dump(-1, ' ', false, json::error_handler_t::replace);
     record({{"type", "check"}, {"name", name}, {"bytes", text.size()}}, text);
 }
 

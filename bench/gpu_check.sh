@@ -10,7 +10,8 @@
 # the machine whose verdicts are the calibration (llvmpipe). JOBS: stages
 # graded at once (default 1). OUT: the report folder (default
 # /tmp/voxlab-gpu-check). GL=osmesa grades on this machine's OSMesa instead
-# (GALLIUM_DRIVER=softpipe for Mesa's softpipe), the same check on a CPU.
+# (GALLIUM_DRIVER=softpipe for Mesa's softpipe, with TIME_LIMIT=600: each
+# stage's time limit in seconds, default 60), the same check on a CPU.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 voxlab="${VOXLAB:-$root/build/bin/voxlab}"
@@ -19,7 +20,7 @@ jobs="${2:-1}"
 out="${3:-/tmp/voxlab-gpu-check}"
 start=$(date +%s.%N)
 VOXLAB_GL="${GL:-egl}" "$voxlab" grade --submission "$root/reference" --expected "$expected" --jobs "$jobs" \
-  --out "$out" --quiet >/dev/null || true
+  --time-limit "${TIME_LIMIT:-60}" --out "$out" --quiet >/dev/null || true
 end=$(date +%s.%N)
 python3 -c 'import sys; print("graded in %.1f s with --jobs %s" % (float(sys.argv[2]) - float(sys.argv[1]), sys.argv[3]))' \
   "$start" "$end" "$jobs"

@@ -18,6 +18,7 @@ uniform int u_flat;
 uniform int u_mesh_lines;  // drawing the wireframe's lines
 
 in vec3 v_world;
+flat in vec3 v_face_normal;  // the triangle's (DrawContext::drawFacets)
 out vec4 frag_color;
 
 // The fragment's depth for the depth test: its distance along the view
@@ -49,7 +50,10 @@ void main() {
     }
     vec3 colour = vec3(u_color_r, u_color_g, u_color_b);
     if (u_flat != 0 && u_shading != 0) {
-        vec3 n = normalize(cross(dFdx(v_world), dFdy(v_world)));
+        // The triangle's own normal: the same on every GL, where one made
+        // from dFdx/dFdy is not at a small triangle's pixels.
+        vec3 n = dot(v_face_normal, v_face_normal) > 0.0 ? v_face_normal
+                                                          : normalize(cross(dFdx(v_world), dFdy(v_world)));
         if (dot(n, -ray.direction) < 0.0) n = -n;
         colour = phong(colour, n, light_direction(), -ray.direction);
     } else {

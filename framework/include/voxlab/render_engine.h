@@ -242,7 +242,7 @@ private:
     unsigned long bsplineGeneration_ = 0;
     // Object-order drawing: a vertex buffer for proxy geometry, and the
     // volume as three stacks of 2D slices (built on first use per volume).
-    unsigned geometryVao_ = 0, geometryVbo_ = 0;
+    unsigned geometryVao_ = 0, geometryVbo_ = 0, geometryNormalVbo_ = 0;
     unsigned pointVao_ = 0, pointVbo_ = 0;  // instanced squares (splats): a position and a value each
     unsigned sliceStacks_[3] = {0, 0, 0};
     unsigned long sliceStackGeneration_[3] = {0, 0, 0};

@@ -74,6 +74,10 @@ public:
     virtual const ShaderProgram& program() const = 0;
     // Draws triangles (3 world positions each), in order.
     virtual void drawTriangles(const std::vector<glm::vec3>& vertices) = 0;
+    // The same, each triangle with its own unit normal for flat shading (the
+    // vertex shader's a_face_normal, flat): the same on every GL, where a
+    // normal from screen-space derivatives is not at a small triangle's edge.
+    virtual void drawFacets(const std::vector<glm::vec3>& vertices) = 0;
     // Draws line segments (2 world positions each).
     virtual void drawLines(const std::vector<glm::vec3>& vertices) = 0;
     // From here on, fragments are kept only where nearer than what is there

@@ -58,7 +58,8 @@ void onlyKeys(const json& j, const std::string& where, std::initializer_list<con
 
 Tolerance overTolerance(const Tolerance& base, const json& j, const std::string& where) {
     if (!j.is_object()) throw Error(where + ": expected an object");
-    onlyKeys(j, where, {"max_difference", "max_fraction", "min_ssim", "max_flip", "cluster_difference", "max_cluster", "why"});
+    onlyKeys(j, where, {"max_difference", "max_fraction", "min_ssim", "max_flip", "cluster_difference", "max_cluster",
+                        "shift", "why"});
     Tolerance t = base;
     t.maxDifference = number(j, "max_difference", t.maxDifference, where);
     t.maxFraction = number(j, "max_fraction", t.maxFraction, where);
@@ -66,6 +67,8 @@ Tolerance overTolerance(const Tolerance& base, const json& j, const std::string&
     t.maxFlip = number(j, "max_flip", t.maxFlip, where);
     t.clusterDifference = number(j, "cluster_difference", t.clusterDifference, where);
     t.maxCluster = number(j, "max_cluster", t.maxCluster, where);
+    t.shift = int(number(j, "shift", t.shift, where));
+    if (t.shift < 0 || t.shift > 1) throw Error(where + ": shift must be 0 or 1 (pixels)");
     if (!(t.maxDifference >= 0 && t.maxFraction >= 0 && t.maxFraction < 1 && t.minSsim < 1 && t.maxFlip > 0 &&
           t.clusterDifference >= 0 && t.maxCluster >= 1))
         throw Error(where + ": tolerances out of range");
@@ -281,18 +284,55 @@ std::vector<StageManifest> stageManifests(const std::string& root) {
     return manifests;
 }
 
-ImageMetrics compareForGrading(const Image& expected, const Image& submission, const Tolerance& tolerance,
+namespace {
+
+// `from`'s value within `shift` pixels of each pixel that is closest to
+// `to`'s value there (the largest channel difference decides).
+Image closestWithin(const Image& from, const Image& to, int shift) {
+    Image out(to.width, to.height);
+    for (int y = 0; y < to.height; ++y)
+        for (int x = 0; x < to.width; ++x) {
+            const glm::vec4 target = to.at(x, y);
+            glm::vec4 best = from.at(x, y);
+            float bestDistance = std::numeric_limits<float>::infinity();
+            for (int dy = -shift; dy <= shift; ++dy)
+                for (int dx = -shift; dx <= shift; ++dx) {
+                    const int u = std::clamp(x + dx, 0, to.width - 1), v = std::clamp(y + dy, 0, to.height - 1);
+                    const glm::vec4 d = glm::abs(from.at(u, v) - target);
+                    const float distance = std::max({d.r, d.g, d.b, d.a});
+                    if (distance < bestDistance) bestDistance = distance, best = from.at(u, v);
+                }
+            out.set(x, y, best);
+        }
+    return out;
+}
+
+}  // namespace
+
+ImageMetrics compareForGrading(const Image& expected, const Image& given, const Tolerance& tolerance,
                                Image* flipMap, Image* differenceMap) {
-    if (expected.width != submission.width || expected.height != submission.height)
-        throw Error("image size " + std::to_string(submission.width) + "x" + std::to_string(submission.height) +
+    if (expected.width != given.width || expected.height != given.height)
+        throw Error("image size " + std::to_string(given.width) + "x" + std::to_string(given.height) +
                     " differs from the expected " + std::to_string(expected.width) + "x" +
                     std::to_string(expected.height));
+    // With a shift, each image is matched against the other's closest value
+    // nearby: what the submission lacks shows in the first pair, what it has
+    // in excess in the second.
+    const Image& submission = tolerance.shift > 0 ? closestWithin(given, expected, tolerance.shift) : given;
+    const Image backward = tolerance.shift > 0 ? closestWithin(expected, given, tolerance.shift) : Image();
     ImageMetrics m;
     // Half a grey level of slack: PNG values are multiples of 1/255.
-    const PixelDifference d = pixelDifference(expected, submission, (tolerance.maxDifference + 0.5) / 255.0);
+    const double over = (tolerance.maxDifference + 0.5) / 255.0, bad = (tolerance.clusterDifference + 0.5) / 255.0;
+    const PixelDifference d = pixelDifference(expected, submission, over);
     m.fractionOver = d.fractionAbove;
     m.maxDifference = d.max * 255.0;
-    m.largestCluster = largestCluster(expected, submission, (tolerance.clusterDifference + 0.5) / 255.0);
+    m.largestCluster = largestCluster(expected, submission, bad);
+    if (tolerance.shift > 0) {
+        const PixelDifference back = pixelDifference(backward, given, over);
+        m.fractionOver = std::max(m.fractionOver, back.fractionAbove);
+        m.maxDifference = std::max(m.maxDifference, back.max * 255.0);
+        m.largestCluster = std::max(m.largestCluster, largestCluster(backward, given, bad));
+    }
     const SsimResult s = ssim(expected, submission);
     m.ssim = s.mean;
     m.ssimMin = s.min;
@@ -372,8 +412,10 @@ nlohmann::json toJson(const ImageMetrics& m) {
 }
 
 nlohmann::json toJson(const Tolerance& t) {
-    return {{"max_difference", t.maxDifference}, {"max_fraction", t.maxFraction}, {"min_ssim", t.minSsim},
-            {"max_flip", t.maxFlip}, {"cluster_difference", t.clusterDifference}, {"max_cluster", t.maxCluster}};
+    json j = {{"max_difference", t.maxDifference}, {"max_fraction", t.maxFraction}, {"min_ssim", t.minSsim},
+              {"max_flip", t.maxFlip}, {"cluster_difference", t.clusterDifference}, {"max_cluster", t.maxCluster}};
+    if (t.shift > 0) j["shift"] = t.shift;
+    return j;
 }
 
 }  // namespace voxlab

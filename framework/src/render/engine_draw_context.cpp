@@ -14,10 +14,13 @@ EngineDrawContext::EngineDrawContext(RenderEngine& engine, const Scene& scene, c
     if (!engine_.geometryVao_) {
         glGenVertexArrays(1, &engine_.geometryVao_);
         glGenBuffers(1, &engine_.geometryVbo_);
+        glGenBuffers(1, &engine_.geometryNormalVbo_);
         glBindVertexArray(engine_.geometryVao_);
         glBindBuffer(GL_ARRAY_BUFFER, engine_.geometryVbo_);
         glEnableVertexAttribArray(0);
         glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+        glBindBuffer(GL_ARRAY_BUFFER, engine_.geometryNormalVbo_);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
     }
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &outputFramebuffer_);
     glGetIntegerv(GL_VIEWPORT, outputViewport_);
@@ -30,16 +33,36 @@ const TransferFunction& EngineDrawContext::transferFunction() const {
     return *inputs_.tf;
 }
 
-void EngineDrawContext::drawArrays(unsigned mode, const std::vector<glm::vec3>& vertices) {
+void EngineDrawContext::drawArrays(unsigned mode, const std::vector<glm::vec3>& vertices,
+                                   const std::vector<glm::vec3>* faceNormals) {
     if (vertices.empty()) return;
     glBindVertexArray(engine_.geometryVao_);
     glBindBuffer(GL_ARRAY_BUFFER, engine_.geometryVbo_);
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(glm::vec3)), vertices.data(), GL_STREAM_DRAW);
+    if (faceNormals) {
+        glBindBuffer(GL_ARRAY_BUFFER, engine_.geometryNormalVbo_);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(faceNormals->size() * sizeof(glm::vec3)), faceNormals->data(),
+                     GL_STREAM_DRAW);
+        glEnableVertexAttribArray(1);
+    } else {
+        glDisableVertexAttribArray(1);
+        glVertexAttrib3f(1, 0.0f, 0.0f, 0.0f);  // no normal: the shader falls back
+    }
     glDrawArrays(mode, 0, GLsizei(vertices.size()));
     if (strictGlChecks()) checkGlDraw(("drawing geometry for renderer '" + scene_.renderer + "'").c_str());
 }
 
 void EngineDrawContext::drawTriangles(const std::vector<glm::vec3>& vertices) { drawArrays(GL_TRIANGLES, vertices); }
+
+void EngineDrawContext::drawFacets(const std::vector<glm::vec3>& vertices) {
+    std::vector<glm::vec3> normals(vertices.size());
+    for (std::size_t t = 0; t + 2 < vertices.size(); t += 3) {
+        const glm::vec3 n = glm::cross(vertices[t + 1] - vertices[t], vertices[t + 2] - vertices[t]);
+        const float length = glm::length(n);
+        normals[t] = normals[t + 1] = normals[t + 2] = length > 0.0f ? n / length : glm::vec3(0.0f);
+    }
+    drawArrays(GL_TRIANGLES, vertices, &normals);
+}
 
 void EngineDrawContext::drawLines(const std::vector<glm::vec3>& vertices) { drawArrays(GL_LINES, vertices); }
 

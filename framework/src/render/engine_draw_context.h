@@ -27,6 +27,7 @@ public:
     const ShaderProgram& program() const override { return *program_; }
     const TransferFunction& transferFunction() const override;
     void drawTriangles(const std::vector<glm::vec3>& vertices) override;
+    void drawFacets(const std::vector<glm::vec3>& vertices) override;
     void drawLines(const std::vector<glm::vec3>& vertices) override;
     void drawInstancedSquares(const std::vector<glm::vec4>& instances) override;
     void enableDepthTest() override;
@@ -39,7 +40,8 @@ public:
     void drawFullScreen() override;
 
 private:
-    void drawArrays(unsigned mode, const std::vector<glm::vec3>& vertices);
+    void drawArrays(unsigned mode, const std::vector<glm::vec3>& vertices,
+                    const std::vector<glm::vec3>* faceNormals = nullptr);
 
     RenderEngine& engine_;
     const Scene& scene_;

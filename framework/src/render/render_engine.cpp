@@ -137,6 +137,7 @@ RenderEngine::~RenderEngine() {
         if (t) glDeleteTextures(1, &t);
     if (geometryVao_) glDeleteVertexArrays(1, &geometryVao_);
     if (geometryVbo_) glDeleteBuffers(1, &geometryVbo_);
+    if (geometryNormalVbo_) glDeleteBuffers(1, &geometryNormalVbo_);
     if (pointVao_) glDeleteVertexArrays(1, &pointVao_);
     if (pointVbo_) glDeleteBuffers(1, &pointVbo_);
     if (brickTexture_) glDeleteTextures(1, &brickTexture_);

@@ -73,7 +73,7 @@ void MeshRenderer::draw(DrawContext& ctx, const ParameterValues& values) const {
     const std::shared_ptr<const Cached> mesh = meshFor(ctx.volume(), values.at("isovalue"));
     ctx.enableDepthTest();
     ctx.program().set("u_mesh_lines", 0);
-    ctx.drawTriangles(mesh->triangles);
+    ctx.drawFacets(mesh->triangles);
     if (values.at("wireframe") != 0.0) {
         ctx.program().set("u_mesh_lines", 1);
         ctx.drawLines(mesh->edges);

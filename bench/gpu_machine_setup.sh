@@ -17,6 +17,7 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="${1:-$root/build}"
 kit="$build/gpu-kit"
 [ -d "$kit" ] || { echo "gpu_machine_setup.sh: no kit at $kit (bench/gpu_kit.sh makes it)" >&2; exit 1; }
+[ -d "$kit/lib" ] || tar -C "$kit" -xJf "$kit/lib.tar.xz"
 for lib in "$kit"/lib/*; do
   name=$(basename "$lib")
   if [ "$name" = libOSMesa.so.8 ] || ! ldconfig -p | grep -q "/$name\$"; then cp "$lib" /usr/local/lib/; fi

@@ -20,6 +20,7 @@ std::vector<OptionSpec> renderOptions() {
     specs.push_back({"out", "PNG", "output file (default: DATASET_RENDERER.png here)"});
     specs.push_back({"implementation", "DIR", "stage shaders from DIR instead of reference/ (a submission)"});
     specs.push_back({"gl", "BACKEND", "headless OpenGL: auto (default, $VOXLAB_GL or osmesa), osmesa, egl"});
+    specs.push_back({"exact-filtering", "", "filter between texels in float, as the grader does (voxlab/filtering.glsl)"});
     specs.push_back({"print-scene", "", "print the resolved scene as JSON and render nothing"});
     specs.push_back({"verbose", "", "print the OpenGL renderer and timings"});
     specs.push_back({"help", "", "show this help"});
@@ -60,6 +61,7 @@ int renderCommand(int argc, char** argv) {
     const auto t1 = Clock::now();
     auto context = createHeadlessContext(parseHeadlessBackend(args.get("gl").value_or("auto")));
     RenderEngine engine(args.get("implementation").value_or(""));
+    engine.setExactFiltering(args.has("exact-filtering"));
     engine.setVolume(volume);
     const auto t2 = Clock::now();
     const Image image = engine.render(scene);

@@ -162,6 +162,15 @@ std::vector<std::string> systemReadable(const std::vector<std::string>& argv) {
                 const fs::path target = fs::canonical(entry.path(), ec);
                 if (!ec) paths.push_back(target.string());
             }
+    // The library folders the grader's own LD_LIBRARY_PATH names (a GPU
+    // container's driver), which the child's environment keeps.
+    if (const char* libraryPath = std::getenv("LD_LIBRARY_PATH"))
+        for (std::string rest = libraryPath; !rest.empty();) {
+            const std::size_t colon = rest.find(':');
+            const std::string folder = rest.substr(0, colon);
+            if (!folder.empty() && folder[0] == '/') paths.push_back(folder);
+            rest = colon == std::string::npos ? "" : rest.substr(colon + 1);
+        }
     const fs::path program = fs::canonical(argv[0], ec);
     if (!ec) paths.push_back(program.string());
     return paths;
@@ -169,14 +178,16 @@ std::vector<std::string> systemReadable(const std::vector<std::string>& argv) {
 
 // The grader's environment variables an isolated child may see: the
 // locale, the GL implementation's settings (Mesa, llvmpipe, glvnd's EGL
-// vendor choice, NVIDIA's), voxlab's own paths, sanitizer options. Nothing
-// else (tokens, SSH_AUTH_SOCK, proxies) crosses.
+// vendor choice, NVIDIA's), voxlab's own paths, sanitizer options, and the
+// library path the grader was given (a GPU container keeps its driver in
+// /usr/local/nvidia/lib64 and names it there; systemReadable() lets those
+// folders be read). Nothing else (tokens, SSH_AUTH_SOCK, proxies) crosses.
 bool allowedVariable(const std::string& name) {
     static const char* const exact[] = {"LANG", "LANGUAGE", "LC_ALL", "LC_CTYPE", "LC_MESSAGES", "LC_NUMERIC",
                                         "TZ", "GALLIUM_DRIVER", "LIBGL_ALWAYS_SOFTWARE", "EGL_PLATFORM",
                                         "__EGL_VENDOR_LIBRARY_FILENAMES", "__EGL_VENDOR_LIBRARY_DIRS",
                                         "VOXLAB_ROOT", "VOXLAB_DATA_PATH", "VOXLAB_GL", "VOXLAB_GL_DEBUG", "ASAN_OPTIONS",
-                                        "UBSAN_OPTIONS", "LSAN_OPTIONS"};
+                                        "UBSAN_OPTIONS", "LSAN_OPTIONS", "LD_LIBRARY_PATH"};
     static const char* const prefixes[] = {"MESA_", "LP_", "GALLIVM_", "__GL_"};
     for (const char* e : exact)
         if (name == e) return true;

@@ -46,10 +46,22 @@ TransferFunction2D fallbackTransferFunction2D(glm::dvec2 window) {
 // A float colour target with a depth buffer (for the object-order
 // renderers that test depth: the mesh).
 void createFloatTarget(unsigned* fbo, unsigned* texture, int width, int height) {
-    if (!*fbo) {
-        glGenFramebuffers(1, fbo);
-        glGenTextures(1, texture);
+    // A new size gets new objects: Mesa's softpipe went on sampling a
+    // re-specified texture's old tiles (shear-warp's intermediate image after
+    // a scene with another size: random colours).
+    if (*fbo) {
+        glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
+        GLint depth = 0;
+        glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
+                                              GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &depth);
+        const GLuint renderbuffer = GLuint(depth);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        if (renderbuffer) glDeleteRenderbuffers(1, &renderbuffer);
+        glDeleteFramebuffers(1, fbo);
+        glDeleteTextures(1, texture);
     }
+    glGenFramebuffers(1, fbo);
+    glGenTextures(1, texture);
     // A float target: the image is read back unrounded, and the one rounding
     // to 8 bits happens on the CPU by the README's rule.
     glBindTexture(GL_TEXTURE_2D, *texture);

@@ -72,7 +72,7 @@ protected:
     Fusion()
         : first_(floatVolume({16, 12, 10}, {1.0, 1.5, 2.0}, [](int i, int j, int k) { return 10.0 * std::sin(0.7 * i + j) * k - 20; })),
           second_(floatVolume({7, 5, 4}, {3.0, 1.0, 1.0}, [](int i, int j, int k) { return double((i * 7 + j * 3 + k * 5) % 11); })) {
-        second_ = Volume(second_.dims(), second_.type(), second_.spacing(), second_.bytes(), "second");
+        second_ = Volume(second_.dims(), second_.type(), second_.spacing(), second_.bytes().copy(), "second");
         saveNrrd(second_, path_);
     }
 

@@ -150,10 +150,10 @@ TEST_F(MalformedInput, NrrdEmptyAttachedData) {
 TEST_F(MalformedInput, NrrdAbsurdSizes) {
     expectFailure(write("huge.nrrd", nrrd("type: uchar\ndimension: 3\nsizes: 100000 100000 100000\nencoding: raw\n"),
                         Bytes(10)),
-                  "sizes 100000 100000 100000 exceed the limit of 2147483648 voxels", 1.0);
+                  "sizes 100000 100000 100000 exceed the limit of 17592186044416 voxels", 1.0);
     expectFailure(write("hugez.nrrd", nrrd("type: float\ndimension: 3\nsizes: 100000 100000 100000\nencoding: gzip\n"),
                         gzipped(Bytes(10))),
-                  "exceed the limit of 2147483648 voxels", 1.0);
+                  "exceed the limit of 17592186044416 voxels", 1.0);
     expectFailure(write("overflow.nrrd",
                         nrrd("type: uchar\ndimension: 3\nsizes: 4294967296 4294967296 4294967296\nencoding: raw\n")),
                   "exceed the limit", 1.0);
@@ -278,7 +278,7 @@ TEST_F(MalformedInput, FldDataSize) {
     expectFailure(write("long.fld", kFld + "veclen=1\ndata=byte\n\f\f", Bytes(70)),
                   "data is too long: expected 64 bytes, got 70");
     expectFailure(write("huge.fld", "# AVS field file\nndim=3\ndim1=100000\ndim2=100000\ndim3=100000\ndata=byte\n\f\f"),
-                  "dims 100000 100000 100000 exceed the limit of 2147483648 voxels", 1.0);
+                  "dims 100000 100000 100000 exceed the limit of 17592186044416 voxels", 1.0);
     expectFailure(write("zero.fld", "# AVS field file\nndim=3\ndim1=0\ndim2=4\ndim3=4\ndata=byte\n\f\f"),
                   "dims must be positive");
     expectFailure(write("abc.fld", "# AVS field file\nndim=3\ndim1=abc\ndim2=4\ndim3=4\ndata=byte\n\f\f"),

@@ -165,15 +165,18 @@ TEST(Volume, HistogramRejectsBadBinCount) {
 }
 
 TEST(Volume, RejectsNonPositiveDims) {
-    std::string m = errorOf([] { Volume(glm::ivec3(0, 4, 4), VoxelType::UInt8, glm::dvec3(1), {}, "v"); });
+    std::string m = errorOf([] { Volume(glm::ivec3(0, 4, 4), VoxelType::UInt8, glm::dvec3(1), std::vector<std::uint8_t>{}, "v"); });
     EXPECT_NE(m.find("v: dimensions must be positive, got 0x4x4"), std::string::npos) << m;
-    m = errorOf([] { Volume(glm::ivec3(2, -1, 4), VoxelType::UInt8, glm::dvec3(1), {}); });
+    m = errorOf([] { Volume(glm::ivec3(2, -1, 4), VoxelType::UInt8, glm::dvec3(1), std::vector<std::uint8_t>{}); });
     EXPECT_NE(m.find("volume: dimensions must be positive"), std::string::npos) << m;
 }
 
 TEST(Volume, RejectsTooManyVoxelsBeforeLookingAtTheBytes) {
-    std::string m = errorOf([] { Volume(glm::ivec3(2048, 2048, 1024), VoxelType::UInt8, glm::dvec3(1), {}); });
-    EXPECT_NE(m.find("exceed the limit of 2147483648 voxels"), std::string::npos) << m;
+    // 2^45 voxels: past kMaxVoxels (2^44), refused from the sizes alone.
+    std::string m = errorOf([] {
+        Volume(glm::ivec3(32768, 32768, 32768), VoxelType::UInt8, glm::dvec3(1), std::vector<std::uint8_t>{});
+    });
+    EXPECT_NE(m.find("exceed the limit of 17592186044416 voxels"), std::string::npos) << m;
 }
 
 TEST(Volume, RejectsWrongByteCount) {

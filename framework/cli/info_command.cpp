@@ -62,6 +62,9 @@ int infoCommand(int argc, char** argv) {
     std::printf("dims:     %d x %d x %d (%zu voxels)\n", d.x, d.y, d.z, v.voxelCount());
     std::printf("type:     %s (%zu bytes/voxel, %.1f MiB)\n", voxelTypeName(v.type()), voxelTypeSize(v.type()),
                 double(v.bytes().size()) / (1024.0 * 1024.0));
+    if (v.streamed())
+        std::printf("storage:  streamed from %s (over the %llu MiB volume cap: read as drawn)\n",
+                    v.streamedFrom().c_str(), (unsigned long long)volumeCapMiB());
     std::printf("spacing:  %g %g %g\n", s.x, s.y, s.z);
     std::printf("extent:   %g x %g x %g\n", e.x, e.y, e.z);
     std::printf("range:    %g .. %g\n", v.minValue(), v.maxValue());

@@ -19,6 +19,7 @@ set(VOXLAB_FUZZ_TARGETS
 set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
   src/volume/volume.cpp
   src/volume/volume_io_util.cpp
+  src/volume/voxel_store.cpp
   src/volume/nrrd_loader.cpp
   src/volume/fld_loader.cpp
   src/volume/dat_raw_loader.cpp

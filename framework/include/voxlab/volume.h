@@ -9,8 +9,10 @@
 // values 0..4095, a signed CT stays signed. Nothing is rescaled to 0..255.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,19 +39,24 @@ struct Histogram {
     std::uint64_t total() const;
 };
 
-// The largest volume voxlab accepts, in voxels (2^31: e.g. 1290^3). Loaders
-// refuse anything larger before allocating, with a one-line error.
-constexpr std::uint64_t kMaxVoxels = std::uint64_t(1) << 31;
+// The largest grid voxlab accepts, in voxels (2^44, 16 Ti-voxels: far past
+// any disk, and small enough that byte counts of float voxels cannot
+// overflow). Each size must also fit an int. Loaders refuse anything larger
+// before allocating, with a one-line error. What really bounds a volume is
+// memory: the cap below, then the disk (streamed volumes).
+constexpr std::uint64_t kMaxVoxels = std::uint64_t(1) << 44;
 
-// The memory cap on a volume's voxel data, checked by the loaders and the
-// phantoms against the declared size before anything is allocated: 4 GiB
-// by default (2^31 float voxels would be 8 GiB), or the whole number of MiB
-// in the environment variable VOXLAB_MAX_VOLUME_MIB (1..kMaxVolumeCapMiB;
-// empty counts as unset). The command line's --max-volume-mib (render,
-// view, bench, info) sets that variable; child processes (the grader's
-// workers) inherit it. Precomputed gradients answer to it too. The error:
-// "big.nrrd: 1024x1024x2048 float32 is 8192 MiB, over the 4096 MiB volume
-// cap (set VOXLAB_MAX_VOLUME_MIB to raise it)".
+// The memory cap on a volume's voxel data held in memory, checked by the
+// loaders and the phantoms against the declared size before anything is
+// allocated: 4 GiB by default, or the whole number of MiB in the
+// environment variable VOXLAB_MAX_VOLUME_MIB (1..kMaxVolumeCapMiB; empty
+// counts as unset). The command line's --max-volume-mib (render, view,
+// bench, info) sets that variable; child processes (the grader's workers)
+// inherit it. Precomputed gradients answer to it too. A raw or NRRD volume
+// over the cap is not refused but streamed from its file (VoxelStore
+// below); a format that cannot be streamed (DICOM, .fld, a phantom) is
+// refused: "big.fld: 1024x1024x2048 float32 is 8192 MiB, over the 4096 MiB
+// volume cap (set VOXLAB_MAX_VOLUME_MIB to raise it)".
 constexpr std::uint64_t kDefaultVolumeCapMiB = 4096;
 constexpr std::uint64_t kMaxVolumeCapMiB = std::uint64_t(1) << 20;  // 1 TiB: beyond any real machine
 constexpr const char* kVolumeCapVariable = "VOXLAB_MAX_VOLUME_MIB";
@@ -62,6 +69,42 @@ std::uint64_t volumeCapMiB();
 // ("VOXLAB_MAX_VOLUME_MIB", "option --max-volume-mib").
 std::uint64_t parseVolumeCapMiB(const std::string& text, const std::string& source);
 
+// Where a volume's voxel bytes live: in memory, or in a file mapped
+// read-only (a raw or NRRD volume over the memory cap, read page by page as
+// it is drawn). release() lets go of pages that were read, so that going
+// through a volume larger than memory keeps only a slab of it resident.
+class VoxelStore {
+public:
+    virtual ~VoxelStore() = default;
+    virtual const std::uint8_t* data() const = 0;
+    virtual std::size_t size() const = 0;
+    // Drops [offset, offset + length) from memory where it can be read again
+    // (a mapped file); a store in memory keeps it.
+    virtual void release(std::size_t offset, std::size_t length) const;
+    // A file's path when the voxels are streamed from it, else "".
+    virtual std::string streamedFrom() const { return ""; }
+};
+
+// A read-only view of bytes (a volume's voxels, wherever they live).
+struct ByteView {
+    const std::uint8_t* p = nullptr;
+    std::size_t n = 0;
+    const std::uint8_t* data() const { return p; }
+    std::size_t size() const { return n; }
+    bool empty() const { return n == 0; }
+    const std::uint8_t* begin() const { return p; }
+    const std::uint8_t* end() const { return p + n; }
+    std::uint8_t operator[](std::size_t i) const { return p[i]; }
+    std::vector<std::uint8_t> copy() const { return {p, p + n}; }
+};
+inline bool operator==(const ByteView& a, const std::vector<std::uint8_t>& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
+}
+inline bool operator==(const std::vector<std::uint8_t>& b, const ByteView& a) { return a == b; }
+inline bool operator==(const ByteView& a, const ByteView& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
+}
+
 class Volume {
 public:
     Volume() = default;
@@ -70,14 +113,27 @@ public:
     // or a dimension/spacing is not positive.
     Volume(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing,
            std::vector<std::uint8_t> bytes, std::string name = "");
+    // The same over voxels that live elsewhere (a mapped file).
+    Volume(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing,
+           std::shared_ptr<const VoxelStore> store, std::string name = "");
 
     const std::string& name() const { return name_; }
     glm::ivec3 dims() const { return dims_; }
     VoxelType type() const { return type_; }
     glm::dvec3 spacing() const { return spacing_; }
     std::size_t voxelCount() const;
-    const std::vector<std::uint8_t>& bytes() const { return bytes_; }
-    const void* data() const { return bytes_.data(); }
+    ByteView bytes() const;
+    const void* data() const { return bytes().data(); }
+    // Streamed from a file (over the memory cap): the file's path, else "".
+    std::string streamedFrom() const { return store_ ? store_->streamedFrom() : ""; }
+    bool streamed() const { return !streamedFrom().empty(); }
+    // Lets go of the voxels of z-slices [z0, z1) where a streamed volume
+    // can read them again; nothing for a volume in memory.
+    void releaseSlices(int z0, int z1) const;
+    // Throws voxlab::Error naming `what` (a renderer's whole-volume copy,
+    // "shear-warp's slice stacks") when the volume is streamed: it needs
+    // the volume in memory.
+    void requireInMemory(const std::string& what) const;
 
     // World-space size of the box: dims * spacing.
     glm::dvec3 extent() const { return glm::dvec3(dims_) * spacing_; }
@@ -105,11 +161,14 @@ public:
     void setMetadata(Metadata metadata) { metadata_ = std::move(metadata); }
 
 private:
+    template <class Problem>
+    void findRange(Problem problem);
+
     std::string name_;
     glm::ivec3 dims_{0};
     VoxelType type_ = VoxelType::UInt8;
     glm::dvec3 spacing_{1.0};
-    std::vector<std::uint8_t> bytes_;
+    std::shared_ptr<const VoxelStore> store_;
     double min_ = 0.0;
     double max_ = 0.0;
     Metadata metadata_;

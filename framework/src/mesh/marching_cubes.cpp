@@ -131,6 +131,7 @@ const std::array<CaseTriangles, 256>& marchingCubesTable() {
 // in a stage host). The mesh is the one a cube-by-cube loop makes: vertices
 // are numbered in the order their edges are first used.
 TriangleMesh extractIsosurface(const Volume& volume, double isovalue, std::size_t maxTriangles) {
+    volume.requireInMemory("marching cubes");
     const auto& table = marchingCubesTable();
     const StageBatches& batch = stageBatches();
     const glm::ivec3 d = volume.dims();

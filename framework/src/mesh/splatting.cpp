@@ -6,6 +6,7 @@
 namespace voxlab {
 
 std::vector<glm::vec4> splatPoints(const Volume& volume, const TransferFunction& tf, const SplatOrder& order) {
+    volume.requireInMemory("splatting");
     const glm::ivec3 d = volume.dims();
     for (int a = 0; a < 3; ++a) {
         const int axis = order.axes[std::size_t(a)], step = order.step[std::size_t(a)];

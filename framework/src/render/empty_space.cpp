@@ -35,8 +35,12 @@ void withVoxelType(VoxelType type, Fill&& fill) {
 // column, then each brick combines the rows it covers. Every voxel is read
 // about (B + 2A) / B times, and only one layer's rows are held at once
 // (a few MiB for a 512^3 volume).
+// A streamed volume's slices are let go once no later layer reads them
+// (Volume::releaseSlices; nothing for a volume in memory).
 template <class T>
-void fillRanges(const std::uint8_t* bytes, glm::ivec3 dims, BrickGrid* grid) {
+void fillRanges(const Volume& volume, BrickGrid* grid) {
+    const std::uint8_t* bytes = volume.bytes().data();
+    const glm::ivec3 dims = volume.dims();
     const int b = grid->brickSize, apron = kBrickApron;
     const glm::ivec3 count = grid->count;
     const auto voxel = [&](std::size_t index) { return voxelValue<T>(bytes, index); };
@@ -70,20 +74,24 @@ void fillRanges(const std::uint8_t* bytes, glm::ivec3 dims, BrickGrid* grid) {
                     }
                 grid->range[grid->index({bx, by, bz})] = r;
             }
+        volume.releaseSlices(z0, std::min(z1, first(bz + 1)));
     }
 }
 
 // wideRange and gradientBound (see empty_space.h), brick by brick over
 // the brick and kGradientApron voxels around it.
 template <class T>
-void fillGradientBounds(const std::uint8_t* bytes, glm::ivec3 dims, BrickGrid* grid) {
+void fillGradientBounds(const Volume& volume, BrickGrid* grid) {
+    const std::uint8_t* bytes = volume.bytes().data();
+    const glm::ivec3 dims = volume.dims();
     constexpr int kGradientApron = 2;
     const auto at = [&](int x, int y, int z) {
         return double(voxelValue<T>(
             bytes, (std::size_t(z) * std::size_t(dims.y) + std::size_t(y)) * std::size_t(dims.x) + std::size_t(x)));
     };
     const int b = grid->brickSize;
-    for (int bz = 0; bz < grid->count.z; ++bz)
+    for (int bz = 0; bz < grid->count.z; ++bz, volume.releaseSlices(std::max((bz - 1) * b - kGradientApron, 0),
+                                                                      std::max(bz * b - kGradientApron, 0)))
         for (int by = 0; by < grid->count.y; ++by)
             for (int bx = 0; bx < grid->count.x; ++bx) {
                 const glm::ivec3 brick(bx, by, bz);
@@ -113,7 +121,7 @@ void BrickGrid::computeGradientBounds(const Volume& volume) {
     wideRange.assign(brickCount(), glm::vec2(0.0f));
     gradientBound.assign(brickCount(), 0.0f);
     withVoxelType(volume.type(), [&](auto voxel) {
-        fillGradientBounds<decltype(voxel)>(volume.bytes().data(), volume.dims(), this);
+        fillGradientBounds<decltype(voxel)>(volume, this);
     });
 }
 
@@ -124,7 +132,7 @@ BrickGrid BrickGrid::build(const Volume& volume, int brickSize) {
     grid.count = (dims + grid.brickSize - 1) / grid.brickSize;
     grid.range.resize(std::size_t(grid.count.x) * std::size_t(grid.count.y) * std::size_t(grid.count.z));
     withVoxelType(volume.type(),
-                  [&](auto voxel) { fillRanges<decltype(voxel)>(volume.bytes().data(), dims, &grid); });
+                  [&](auto voxel) { fillRanges<decltype(voxel)>(volume, &grid); });
     return grid;
 }
 

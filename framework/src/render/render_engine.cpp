@@ -503,6 +503,7 @@ unsigned RenderEngine::sliceStack(int axis) {
     // Layer k of the stack for `axis` is the voxel layer at index k along it;
     // within a layer, the other two axes in cyclic order (axis+1, axis+2).
     const Volume& v = *volume_;
+    v.requireInMemory("texture slicing's and shear-warp's slice stacks");
     const glm::ivec3 n = v.dims();
     const int a = axis, b = (axis + 1) % 3, c = (axis + 2) % 3;
     std::vector<float> texels(v.voxelCount());

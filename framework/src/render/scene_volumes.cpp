@@ -87,8 +87,33 @@ void uploadConvertedSlices(const Volume& volume, const glm::ivec3& origin, const
             for (int x = 0; x < size.x; ++x) slice[std::size_t(y) * size.x + x] = convert(int(row[x]));
         }
         glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z, size.x, size.y, 1, GL_RED, type, slice.data());
+        volume.releaseSlices(origin.z + z, origin.z + z + 1);  // a streamed volume's page by page
     }
 }
+
+// A streamed volume's box (uint8, uint16, float32), a slab of z-slices at a
+// time, each slab's pages let go once it is up: the file's pages resident
+// at once are one slab's, not the box's slices whole (a brick half as wide
+// as the volume reads every page of its slices). The unpack state picks the
+// box's rows as for a volume in memory.
+namespace {
+
+void uploadStreamedBox(const Volume& volume, const glm::ivec3& origin, const glm::ivec3& size) {
+    const GLenum internal = volume.type() == VoxelType::UInt8 ? GL_R8 : volume.type() == VoxelType::UInt16 ? GL_R16 : GL_R32F;
+    const GLenum type = volume.type() == VoxelType::UInt8 ? GL_UNSIGNED_BYTE
+                        : volume.type() == VoxelType::UInt16 ? GL_UNSIGNED_SHORT : GL_FLOAT;
+    glTexImage3D(GL_TEXTURE_3D, 0, GLint(internal), size.x, size.y, size.z, 0, GL_RED, type, nullptr);
+    const std::size_t slice = std::size_t(volume.dims().x) * std::size_t(volume.dims().y) * voxelTypeSize(volume.type());
+    const int slab = int(std::max<std::size_t>(1, (std::size_t(16) << 20) / slice));
+    for (int z = 0; z < size.z; z += slab) {
+        const int n = std::min(slab, size.z - z);
+        glPixelStorei(GL_UNPACK_SKIP_IMAGES, origin.z + z);
+        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z, size.x, size.y, n, GL_RED, type, volume.data());
+        volume.releaseSlices(origin.z + z, origin.z + z + n);
+    }
+}
+
+}  // namespace
 
 // Straight from the volume's memory: the unpack state picks the box's rows
 // out of the whole volume, so no copy of the box is made (int16 is shifted
@@ -108,7 +133,9 @@ glm::vec2 uploadVolumeBox(unsigned texture, const Volume& volume, const glm::ive
     // bits fit a float's 24-bit mantissa). Twice the memory, the same numbers
     // in every shader. (Hardware filtering of R32F needs
     // OES_texture_float_linear; the explicit trilinear path never needs it.)
-    switch (volume.type()) {
+    if (volume.streamed() && volume.type() != VoxelType::Int16) {
+        uploadStreamedBox(volume, origin, size);
+    } else switch (volume.type()) {
         case VoxelType::UInt8:
             glTexImage3D(GL_TEXTURE_3D, 0, GL_R8, size.x, size.y, size.z, 0, GL_RED, GL_UNSIGNED_BYTE, volume.data());
             break;
@@ -137,6 +164,7 @@ glm::vec2 uploadVolumeBox(unsigned texture, const Volume& volume, const glm::ive
     for (GLenum name : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS,
                         GL_UNPACK_SKIP_IMAGES})
         glPixelStorei(name, 0);
+    volume.releaseSlices(origin.z, origin.z + size.z);  // a streamed volume's: read again when needed
     textureParameters(GL_TEXTURE_3D, GL_NEAREST);
     checkGlError("uploading a volume texture");
     return volumeTextureScaleOffset(volume.type());

@@ -26,6 +26,7 @@ void bsplineCoefficientsLine(std::vector<double>& s) {
 }
 
 std::vector<float> bsplineCoefficients(const Volume& volume) {
+    volume.requireInMemory("the cubic B-spline's coefficients");
     const glm::ivec3 d = volume.dims();
     std::vector<double> c(volume.voxelCount());
     for (std::size_t i = 0; i < c.size(); ++i) c[i] = volume.valueAt(i);

@@ -71,8 +71,9 @@ Volume loadDatRaw(const std::string& path) {
         !parseInt(words[2], n[2])) {
         fail(path, "invalid Resolution '" + resolution + "' (need 3 integers)");
     }
-    // Checked against kMaxVoxels and the volume cap before anything is read.
-    const std::uint64_t expected = checkedVolumeBytes(path, "Resolution", n[0], n[1], n[2], type);
+    // Checked against kMaxVoxels before anything is read; over the memory
+    // cap the voxels are streamed from the .raw file (voxel_store.cpp).
+    const std::uint64_t expected = checkedVoxelCount(path, "Resolution", n[0], n[1], n[2]) * voxelTypeSize(type);
 
     glm::dvec3 spacing(1.0);
     if (auto it = fields.find("slicethickness"); it != fields.end()) {
@@ -93,10 +94,14 @@ Volume loadDatRaw(const std::string& path) {
         fail(path, "data file '" + object + "' not found");
     }
     std::size_t elem = voxelTypeSize(type);
+    const glm::ivec3 dims = glm::ivec3(int(n[0]), int(n[1]), int(n[2]));
+    if (overMemoryCap(expected))
+        return buildVolume(path, dims, type, spacing,
+                           hostIsLittleEndian() ? mapRawVoxels(path, rawPath, 0, expected)
+                                                : streamThroughCache(path, rawPath, 0, 0, expected, false, elem));
     std::vector<std::uint8_t> bytes = readRawVoxels(path, rawPath, 0, expected);
     if (!hostIsLittleEndian()) swapByteOrder(bytes, elem);
-    return buildVolume(path, glm::ivec3(int(n[0]), int(n[1]), int(n[2])), type, spacing,
-                       std::move(bytes));
+    return buildVolume(path, dims, type, spacing, std::move(bytes));
 }
 
 }  // namespace voxlab

@@ -94,6 +94,7 @@ void checkGradientMemory(const Volume& volume) {
 }  // namespace
 
 std::vector<glm::vec3> computeGradients(const Volume& volume, GradientEstimator estimator) {
+    volume.requireInMemory("the precomputed gradient volume");
     checkGradientMemory(volume);
     const std::vector<float> values = valuesOf(volume);
     const Grid grid{volume.dims(), &values};

@@ -198,8 +198,9 @@ Volume loadNrrd(const std::string& path) {
     for (int a = 0; a < 3; ++a) {
         if (!parseInt(sizes[a], n[a])) fail(path, "invalid sizes '" + sizesText + "'");
     }
-    // Checked against kMaxVoxels and the volume cap before anything is read.
-    const std::uint64_t expected = checkedVolumeBytes(path, "sizes", n[0], n[1], n[2], type);
+    // Checked against kMaxVoxels before anything is read; over the memory
+    // cap the voxels are streamed from the file (voxel_store.cpp).
+    const std::uint64_t expected = checkedVoxelCount(path, "sizes", n[0], n[1], n[2]) * voxelTypeSize(type);
     glm::dvec3 spacing = parseSpacing(path, h);
 
     const std::string& encodingText = require(path, h, "encoding");
@@ -239,13 +240,18 @@ Volume loadNrrd(const std::string& path) {
     }
 
     const std::size_t elem = voxelTypeSize(type);
+    const glm::ivec3 dims = glm::ivec3(int(n[0]), int(n[1]), int(n[2]));
+    const bool swap = bigEndian == hostIsLittleEndian();
+    if (overMemoryCap(expected)) {
+        if (!gzip && !swap) return buildVolume(path, dims, type, spacing, mapRawVoxels(path, dataPath, offset + std::uint64_t(skip), expected));
+        return buildVolume(path, dims, type, spacing,
+                           streamThroughCache(path, dataPath, offset, std::uint64_t(skip), expected, gzip, swap ? elem : 0));
+    }
     std::vector<std::uint8_t> bytes =
         gzip ? inflateGzipFile(path, dataPath, offset, std::uint64_t(skip), expected)
              : readRawVoxels(path, dataPath, offset + std::uint64_t(skip), expected);
-    if (bigEndian == hostIsLittleEndian()) swapByteOrder(bytes, elem);
-
-    return buildVolume(path, glm::ivec3(int(n[0]), int(n[1]), int(n[2])), type, spacing,
-                       std::move(bytes));
+    if (swap) swapByteOrder(bytes, elem);
+    return buildVolume(path, dims, type, spacing, std::move(bytes));
 }
 
 // ---- writing -----------------------------------------------------------------
@@ -268,7 +274,7 @@ std::string exactText(double v) {
 }
 
 // The gzip encoding of `data`, appended to `out` chunk by chunk.
-void appendGzip(std::string& out, const std::string& path, const std::vector<std::uint8_t>& data) {
+void appendGzip(std::string& out, const std::string& path, const ByteView& data) {
     z_stream zs{};
     if (deflateInit2(&zs, Z_DEFAULT_COMPRESSION, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
         fail(path, "cannot initialise zlib");

@@ -53,14 +53,40 @@ T load(const std::uint8_t* bytes, std::size_t index) {
     return v;
 }
 
-template <typename T>
-void integerRange(const std::vector<std::uint8_t>& bytes, std::size_t n, double& lo, double& hi) {
-    T mn = load<T>(bytes.data(), 0), mx = mn;
-    for (std::size_t i = 1; i < n; ++i) {
-        T v = load<T>(bytes.data(), i);
-        mn = std::min(mn, v);
-        mx = std::max(mx, v);
+// Voxels held in memory.
+class MemoryStore final : public VoxelStore {
+public:
+    explicit MemoryStore(std::vector<std::uint8_t> bytes) : bytes_(std::move(bytes)) {}
+    const std::uint8_t* data() const override { return bytes_.data(); }
+    std::size_t size() const override { return bytes_.size(); }
+
+private:
+    std::vector<std::uint8_t> bytes_;
+};
+
+// Calls scan(first, count) over voxels [0, n) in slabs of about 64 MiB,
+// letting go of each slab afterwards (a streamed volume keeps one slab
+// resident however large it is).
+template <class Scan>
+void inSlabs(const VoxelStore& store, std::size_t n, std::size_t voxelSize, Scan scan) {
+    const std::size_t slab = std::max<std::size_t>(1, (std::size_t(64) << 20) / voxelSize);
+    for (std::size_t first = 0; first < n; first += slab) {
+        const std::size_t count = std::min(slab, n - first);
+        scan(first, count);
+        store.release(first * voxelSize, count * voxelSize);
     }
+}
+
+template <typename T>
+void integerRange(const VoxelStore& store, std::size_t n, double& lo, double& hi) {
+    T mn = load<T>(store.data(), 0), mx = mn;
+    inSlabs(store, n, sizeof(T), [&](std::size_t first, std::size_t count) {
+        for (std::size_t i = first; i < first + count; ++i) {
+            const T v = load<T>(store.data(), i);
+            mn = std::min(mn, v);
+            mx = std::max(mx, v);
+        }
+    });
     lo = mn;
     hi = mx;
 }
@@ -99,9 +125,15 @@ std::uint64_t volumeCapMiB() {
     return parseVolumeCapMiB(value, kVolumeCapVariable);
 }
 
+void VoxelStore::release(std::size_t, std::size_t) const {}
+
 Volume::Volume(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing,
                std::vector<std::uint8_t> bytes, std::string name)
-    : name_(std::move(name)), dims_(dims), type_(type), spacing_(spacing), bytes_(std::move(bytes)) {
+    : Volume(dims, type, spacing, std::make_shared<MemoryStore>(std::move(bytes)), std::move(name)) {}
+
+Volume::Volume(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing,
+               std::shared_ptr<const VoxelStore> store, std::string name)
+    : name_(std::move(name)), dims_(dims), type_(type), spacing_(spacing), store_(std::move(store)) {
     const std::string label = name_.empty() ? "volume" : name_;
     auto problem = [&](const std::string& what) { throw detail::VolumeError(label, what); };
 
@@ -122,37 +154,64 @@ Volume::Volume(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing,
         }
     }
     std::uint64_t expected = count * voxelTypeSize(type);
-    if (bytes_.size() != expected) {
-        problem("voxel data has " + std::to_string(bytes_.size()) + " bytes, expected " +
+    const std::size_t have = store_ ? store_->size() : 0;
+    if (have != expected) {
+        problem("voxel data has " + std::to_string(have) + " bytes, expected " +
                 std::to_string(expected) + " for " + dimsText(dims) + " " + voxelTypeName(type));
     }
+    findRange(problem);
+}
 
-    const std::size_t n = static_cast<std::size_t>(count);
-    switch (type) {
-        case VoxelType::UInt8: integerRange<std::uint8_t>(bytes_, n, min_, max_); break;
-        case VoxelType::UInt16: integerRange<std::uint16_t>(bytes_, n, min_, max_); break;
-        case VoxelType::Int16: integerRange<std::int16_t>(bytes_, n, min_, max_); break;
+// The smallest and largest value, one slab at a time; a float voxel that is
+// not finite is refused with its position.
+template <class Problem>
+void Volume::findRange(Problem problem) {
+    const std::size_t n = voxelCount();
+    const VoxelStore& store = *store_;
+    switch (type_) {
+        case VoxelType::UInt8: integerRange<std::uint8_t>(store, n, min_, max_); break;
+        case VoxelType::UInt16: integerRange<std::uint16_t>(store, n, min_, max_); break;
+        case VoxelType::Int16: integerRange<std::int16_t>(store, n, min_, max_); break;
         case VoxelType::Float32: {
-            float mn = 0.0f, mx = 0.0f;
-            for (std::size_t i = 0; i < n; ++i) {
-                float v = load<float>(bytes_.data(), i);
-                if (!std::isfinite(v)) {
-                    std::size_t x = i % std::size_t(dims.x);
-                    std::size_t y = (i / std::size_t(dims.x)) % std::size_t(dims.y);
-                    std::size_t z = i / (std::size_t(dims.x) * std::size_t(dims.y));
-                    problem(std::string("float32 voxel (") + std::to_string(x) + ", " +
-                            std::to_string(y) + ", " + std::to_string(z) + ") is " +
-                            (std::isnan(v) ? "NaN" : "infinite") +
-                            "; voxel values must be finite");
+            float mn = load<float>(store.data(), 0), mx = mn;
+            inSlabs(store, n, sizeof(float), [&](std::size_t first, std::size_t count) {
+                for (std::size_t i = first; i < first + count; ++i) {
+                    const float v = load<float>(store.data(), i);
+                    if (!std::isfinite(v)) {
+                        const std::size_t x = i % std::size_t(dims_.x);
+                        const std::size_t y = (i / std::size_t(dims_.x)) % std::size_t(dims_.y);
+                        const std::size_t z = i / (std::size_t(dims_.x) * std::size_t(dims_.y));
+                        problem(std::string("float32 voxel (") + std::to_string(x) + ", " + std::to_string(y) + ", " +
+                                std::to_string(z) + ") is " + (std::isnan(v) ? "NaN" : "infinite") +
+                                "; voxel values must be finite");
+                    }
+                    mn = std::min(mn, v);
+                    mx = std::max(mx, v);
                 }
-                if (i == 0 || v < mn) mn = v;
-                if (i == 0 || v > mx) mx = v;
-            }
+            });
             min_ = mn;
             max_ = mx;
             break;
         }
     }
+}
+
+ByteView Volume::bytes() const {
+    return store_ ? ByteView{store_->data(), store_->size()} : ByteView{};
+}
+
+void Volume::releaseSlices(int z0, int z1) const {
+    if (!store_ || z1 <= z0) return;
+    const std::size_t slice = std::size_t(dims_.x) * std::size_t(dims_.y) * voxelTypeSize(type_);
+    store_->release(std::size_t(std::max(z0, 0)) * slice, std::size_t(z1 - std::max(z0, 0)) * slice);
+}
+
+void Volume::requireInMemory(const std::string& what) const {
+    if (streamed())
+        throw Error((name_.empty() ? std::string("volume") : name_) + ": " + what +
+                    " needs the volume in memory, and it is streamed from " + streamedFrom() +
+                    " (over the " + std::to_string(volumeCapMiB()) +
+                    " MiB volume cap): raise --max-volume-mib if the machine has the memory");
 }
 
 std::size_t Volume::voxelCount() const {
@@ -163,7 +222,7 @@ double Volume::minSpacing() const { return std::min({spacing_.x, spacing_.y, spa
 
 double Volume::valueAt(std::size_t index) const {
     assert(index < voxelCount());
-    const std::uint8_t* p = bytes_.data();
+    const std::uint8_t* p = store_->data();
     switch (type_) {
         case VoxelType::UInt8: return p[index];
         case VoxelType::UInt16: return load<std::uint16_t>(p, index);
@@ -195,14 +254,19 @@ Histogram Volume::histogram(int bins) const {
 
     const std::size_t n = voxelCount();
     if (n == 0) return h;
+    const std::size_t size = voxelTypeSize(type_);
     if (type_ == VoxelType::Float32) {
-        for (std::size_t i = 0; i < n; ++i) h.counts[binOf(valueAt(i))]++;
+        inSlabs(*store_, n, size, [&](std::size_t first, std::size_t count) {
+            for (std::size_t i = first; i < first + count; ++i) h.counts[binOf(valueAt(i))]++;
+        });
         return h;
     }
     // Integer types: count each distinct value once, then bin the values.
     std::vector<std::uint64_t> perValue(type_ == VoxelType::UInt8 ? 256 : 65536, 0);
     const double offset = type_ == VoxelType::Int16 ? 32768.0 : 0.0;
-    for (std::size_t i = 0; i < n; ++i) perValue[static_cast<std::size_t>(valueAt(i) + offset)]++;
+    inSlabs(*store_, n, size, [&](std::size_t first, std::size_t count) {
+        for (std::size_t i = first; i < first + count; ++i) perValue[static_cast<std::size_t>(valueAt(i) + offset)]++;
+    });
     for (std::size_t v = 0; v < perValue.size(); ++v) {
         if (perValue[v]) h.counts[binOf(double(v) - offset)] += perValue[v];
     }

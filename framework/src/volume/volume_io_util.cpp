@@ -64,6 +64,12 @@ std::vector<std::uint8_t> readBytes(const std::string& errorPath, const std::str
 
 std::vector<std::uint8_t> readRawVoxels(const std::string& errorPath, const std::string& dataPath,
                                         std::uint64_t offset, std::uint64_t expected) {
+    checkRawLength(errorPath, dataPath, offset, expected);
+    return readBytes(errorPath, dataPath, offset, expected);
+}
+
+void checkRawLength(const std::string& errorPath, const std::string& dataPath, std::uint64_t offset,
+                    std::uint64_t expected) {
     std::uint64_t size = fileSize(dataPath);
     std::uint64_t available = size > offset ? size - offset : 0;
     std::string where =
@@ -76,7 +82,6 @@ std::vector<std::uint8_t> readRawVoxels(const std::string& errorPath, const std:
         fail(errorPath, "data is too long" + where + ": expected " + std::to_string(expected) +
                             " bytes, got " + std::to_string(available));
     }
-    return readBytes(errorPath, dataPath, offset, expected);
 }
 
 std::string siblingPath(const std::string& headerPath, const std::string& name) {
@@ -102,6 +107,11 @@ struct InflateTarget {
     std::uint64_t skip, expected;
     std::uint64_t skipped = 0, produced = 0;
     std::vector<std::uint8_t> out;
+    // When set: output goes through `chunk` to the sink a chunk at a time,
+    // instead of into `out`.
+    std::function<void(const std::uint8_t*, std::size_t)> sink;
+    std::vector<std::uint8_t> chunk;
+    std::size_t filled = 0;
     std::uint8_t scratch[1 << 16];
 
     bool complete() const { return skipped == skip && produced == expected; }
@@ -112,6 +122,10 @@ struct InflateTarget {
         if (skipped < skip) {
             zs.next_out = scratch;
             zs.avail_out = static_cast<uInt>(std::min<std::uint64_t>(sizeof scratch, skip - skipped));
+        } else if (produced < expected && sink) {
+            if (filled == chunk.size()) flush();
+            zs.next_out = chunk.data() + filled;
+            zs.avail_out = static_cast<uInt>(std::min<std::uint64_t>(chunk.size() - filled, expected - produced));
         } else if (produced < expected) {
             if (out.size() == produced) grow();
             zs.next_out = out.data() + produced;
@@ -142,10 +156,15 @@ struct InflateTarget {
         out.resize(static_cast<std::size_t>(size));
     }
 
+    void flush() {
+        if (filled > 0) sink(chunk.data(), filled);
+        filled = 0;
+    }
+
     // Records `n` bytes written since aim(); returns true if they were surplus.
     bool advance(std::uint64_t n) {
         if (skipped < skip) skipped += n;
-        else if (produced < expected) produced += n;
+        else if (produced < expected) produced += n, filled += sink ? std::size_t(n) : 0;
         else return n > 0;
         return false;
     }
@@ -153,9 +172,12 @@ struct InflateTarget {
 
 }  // namespace
 
-std::vector<std::uint8_t> inflateGzipFile(const std::string& errorPath, const std::string& dataPath,
-                                          std::uint64_t offset, std::uint64_t skip,
-                                          std::uint64_t expected) {
+namespace {
+
+// Inflates into `target` (its vector, or its sink).
+void inflateInto(const std::string& errorPath, const std::string& dataPath, std::uint64_t offset,
+                 InflateTarget* target) {
+    const std::uint64_t expected = target->expected;
     std::ifstream in(dataPath, std::ios::binary);
     if (!in) fail(errorPath, "cannot open '" + dataPath + "' for reading");
     in.seekg(static_cast<std::streamoff>(offset));
@@ -164,9 +186,6 @@ std::vector<std::uint8_t> inflateGzipFile(const std::string& errorPath, const st
     if (inflateInit2(&zs, 15 + 32) != Z_OK) fail(errorPath, "cannot initialise zlib");
     struct Guard { z_stream* zs; ~Guard() { inflateEnd(zs); } } guard{&zs};
 
-    auto target = std::make_unique<InflateTarget>();
-    target->skip = skip;
-    target->expected = expected;
     std::vector<std::uint8_t> input(1 << 18);
     bool inputDone = false;
 
@@ -211,7 +230,30 @@ std::vector<std::uint8_t> inflateGzipFile(const std::string& errorPath, const st
             fail(errorPath, "corrupt gzip data (" + msg + ")");
         }
     }
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> inflateGzipFile(const std::string& errorPath, const std::string& dataPath,
+                                          std::uint64_t offset, std::uint64_t skip,
+                                          std::uint64_t expected) {
+    auto target = std::make_unique<InflateTarget>();
+    target->skip = skip;
+    target->expected = expected;
+    inflateInto(errorPath, dataPath, offset, target.get());
     return std::move(target->out);
+}
+
+void inflateGzipTo(const std::string& errorPath, const std::string& dataPath, std::uint64_t offset,
+                   std::uint64_t skip, std::uint64_t expected,
+                   const std::function<void(const std::uint8_t*, std::size_t)>& sink) {
+    auto target = std::make_unique<InflateTarget>();
+    target->skip = skip;
+    target->expected = expected;
+    target->sink = sink;
+    target->chunk.resize(std::size_t(4) << 20);
+    inflateInto(errorPath, dataPath, offset, target.get());
+    target->flush();
 }
 
 // ---- bytes and numbers -----------------------------------------------------
@@ -289,24 +331,27 @@ std::uint64_t checkedVoxelCount(const std::string& path, const std::string& what
         // Each size becomes an int (glm::ivec3): 2^31 itself would wrap to a
         // negative size after the data was read.
         if (n > std::numeric_limits<int>::max()) tooMany();
-        if (static_cast<std::uint64_t>(n) > kMaxVoxels) tooMany();
-        count *= static_cast<std::uint64_t>(n);  // both factors <= 2^31: no overflow
+        count *= static_cast<std::uint64_t>(n);  // at most 2^44 times 2^31: no overflow
         if (count > kMaxVoxels) tooMany();
     }
     return count;
 }
 
+bool overMemoryCap(std::uint64_t bytes) { return bytes > volumeCapMiB() * (std::uint64_t(1) << 20); }
+
+void failOverCap(const std::string& path, long long nx, long long ny, long long nz, VoxelType type,
+                 std::uint64_t bytes) {
+    const std::uint64_t capMiB = volumeCapMiB(), mib = std::uint64_t(1) << 20;
+    const std::string size = bytes % mib == 0 ? std::to_string(bytes / mib) + " MiB" : std::to_string(bytes) + " bytes";
+    fail(path, std::to_string(nx) + "x" + std::to_string(ny) + "x" + std::to_string(nz) + " " + voxelTypeName(type) +
+                   " is " + size + ", over the " + std::to_string(capMiB) + " MiB volume cap (set " +
+                   kVolumeCapVariable + " to raise it)");
+}
+
 std::uint64_t checkedVolumeBytes(const std::string& path, const std::string& what,
                                  long long nx, long long ny, long long nz, VoxelType type) {
     const std::uint64_t bytes = checkedVoxelCount(path, what, nx, ny, nz) * voxelTypeSize(type);
-    const std::uint64_t capMiB = volumeCapMiB(), mib = std::uint64_t(1) << 20;
-    if (bytes > capMiB * mib) {  // both at most 2^33 (8 GiB) and 2^40: no overflow
-        const std::string size = bytes % mib == 0 ? std::to_string(bytes / mib) + " MiB"
-                                                  : std::to_string(bytes) + " bytes";
-        fail(path, std::to_string(nx) + "x" + std::to_string(ny) + "x" + std::to_string(nz) + " " +
-                       voxelTypeName(type) + " is " + size + ", over the " + std::to_string(capMiB) +
-                       " MiB volume cap (set " + kVolumeCapVariable + " to raise it)");
-    }
+    if (overMemoryCap(bytes)) failOverCap(path, nx, ny, nz, type, bytes);
     return bytes;
 }
 
@@ -314,6 +359,15 @@ Volume buildVolume(const std::string& path, glm::ivec3 dims, VoxelType type, glm
                    std::vector<std::uint8_t> bytes) {
     try {
         return Volume(dims, type, spacing, std::move(bytes), fileStem(path));
+    } catch (const VolumeError& e) {
+        fail(path, e.problem());
+    }
+}
+
+Volume buildVolume(const std::string& path, glm::ivec3 dims, VoxelType type, glm::dvec3 spacing,
+                   std::shared_ptr<const VoxelStore> store) {
+    try {
+        return Volume(dims, type, spacing, std::move(store), fileStem(path));
     } catch (const VolumeError& e) {
         fail(path, e.problem());
     }

@@ -20,6 +20,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -65,6 +67,30 @@ std::vector<std::uint8_t> readBytes(const std::string& errorPath, const std::str
 // (and `dataPath` when it is a different file). Checked before allocating.
 std::vector<std::uint8_t> readRawVoxels(const std::string& errorPath, const std::string& dataPath,
                                         std::uint64_t offset, std::uint64_t expected);
+// readRawVoxels' length checks alone.
+void checkRawLength(const std::string& errorPath, const std::string& dataPath, std::uint64_t offset,
+                    std::uint64_t expected);
+
+// ---- streaming (voxel_store.cpp) -------------------------------------------
+
+// The `expected` bytes at `offset` of `dataPath` (after readRawVoxels'
+// checks), mapped read-only: voxels in host byte order, streamed from the
+// file.
+std::shared_ptr<const VoxelStore> mapRawVoxels(const std::string& errorPath, const std::string& dataPath,
+                                               std::uint64_t offset, std::uint64_t expected);
+// Voxels that cannot be mapped as they are (gzip, or `swapElement` > 1:
+// another byte order), written once into a cache file in host order and
+// mapped from there. The cache file is named after the data file's path,
+// size and time, and the region.
+std::shared_ptr<const VoxelStore> streamThroughCache(const std::string& errorPath, const std::string& dataPath,
+                                                     std::uint64_t offset, std::uint64_t skip, std::uint64_t expected,
+                                                     bool gzip, std::size_t swapElement);
+// Whether voxel data of `bytes` goes over the memory cap (then it is
+// streamed where the format allows).
+bool overMemoryCap(std::uint64_t bytes);
+// The cap's message for a format that cannot stream.
+[[noreturn]] void failOverCap(const std::string& path, long long nx, long long ny, long long nz, VoxelType type,
+                              std::uint64_t bytes);
 
 // `name` relative to the folder of `headerPath` (absolute names unchanged).
 std::string siblingPath(const std::string& headerPath, const std::string& name);
@@ -89,6 +115,10 @@ std::string fileExtension(const std::string& path);
 std::vector<std::uint8_t> inflateGzipFile(const std::string& errorPath, const std::string& dataPath,
                                           std::uint64_t offset, std::uint64_t skip,
                                           std::uint64_t expected);
+// The same handed to `sink` a few MiB at a time, in order (nothing is held).
+void inflateGzipTo(const std::string& errorPath, const std::string& dataPath, std::uint64_t offset,
+                   std::uint64_t skip, std::uint64_t expected,
+                   const std::function<void(const std::uint8_t*, std::size_t)>& sink);
 
 // ---- bytes and numbers -----------------------------------------------------
 
@@ -121,5 +151,7 @@ std::uint64_t checkedVolumeBytes(const std::string& path, const std::string& wha
 // is re-thrown as "<path>: <problem>".
 Volume buildVolume(const std::string& path, glm::ivec3 dims, VoxelType type, glm::dvec3 spacing,
                    std::vector<std::uint8_t> bytes);
+Volume buildVolume(const std::string& path, glm::ivec3 dims, VoxelType type, glm::dvec3 spacing,
+                   std::shared_ptr<const VoxelStore> store);
 
 }  // namespace voxlab::detail

@@ -69,7 +69,7 @@ def check(ok, what):
     if not ok: problems.append(what)
 cents = lambda x: round(x * 100)
 tests = proper["tests"]
-check(len(tests) == 13, f"13 tests expected (6+1 mip, 5+1 minip), got {len(tests)}")
+check(len(tests) == 14, f"14 tests expected (6+1 mip, 6+1 minip), got {len(tests)}")
 check(sum(cents(t["max_score"]) for t in tests) == 1500, "the tests' max_score must add up to exactly 15.00")
 check(sum(cents(t["score"]) for t in tests) == cents(proper["score"]), "the tests' scores must add up to the total")
 check(0 < proper["score"] < 15, f"the mistake in mip must cost points but not all: {proper['score']}")

@@ -85,6 +85,21 @@ TEST_F(GlStrict, ASamplerLeftUnsetDoesNotShareUnitZero) {
     glUseProgram(0);
 }
 
+// A program deleted while it was current (the last of an engine that was
+// destroyed) is not made current again when the next program is linked:
+// parkSamplerUniforms restored it by name, and the next engine's first draw
+// failed with GL_INVALID_VALUE (two engines, one after the other, in the
+// coverage test's process).
+TEST_F(GlStrict, LinkingAfterTheCurrentProgramWasDeletedLeavesNoError) {
+    std::unique_ptr<ShaderProgram> first = twoSamplerTypes();
+    first->use();
+    first.reset();  // deleted while current
+    EXPECT_NO_THROW(checkGlError("deleting the current program"));
+    const std::unique_ptr<ShaderProgram> second = twoSamplerTypes();
+    EXPECT_NO_THROW(checkGlError("linking the next program"));
+    glUseProgram(0);
+}
+
 TEST_F(GlStrict, TheDriversOwnErrorMessagesAreKept) {
     glBindTexture(GL_TEXTURE_2D, 0);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, 12345);  // GL_INVALID_ENUM

@@ -3,7 +3,8 @@
 // every one of them in its stage, while the reference passes (test_grader).
 // Also the calibration the tolerances rest on: the reference rendered
 // another way (hardware instead of explicit trilinear filtering, another
-// llvmpipe thread count) passes against itself.
+// llvmpipe thread count) passes against itself; and the one the points rest
+// on: a mistake at one condition costs less than one seen everywhere.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "support/run_command.h"
@@ -37,6 +39,7 @@ GraderOptions gradingOptions(const fs::path& root, const fs::path& reference = k
 struct Mutant {
     std::string stage, name, file, find, replace, bug, function, hint;
     bool gross = false;
+    std::vector<std::string> conditions;  // wrong only under these (docs/grading.md)
 };
 
 // Every stage's reference/<stage>/mutants.json (tests/mutants/README.md), in
@@ -50,7 +53,7 @@ std::vector<Mutant> loadList(const char* key) {
         for (const json& m : j.value(key, json::array())) {
             mutants.push_back({m.at("stage"), m.at("name"), m.at("file"), m.at("find"), m.at("replace"),
                                m.value("bug", m.value("about", "")), m.value("function", ""), m.value("hint", ""),
-                               m.value("gross", false)});
+                               m.value("gross", false), m.value("conditions", std::vector<std::string>{})});
             if (mutants.back().stage != stage.stage)
                 throw std::runtime_error(file.string() + ": " + mutants.back().name + " is a mutant of another stage");
         }
@@ -254,6 +257,59 @@ TEST(MutantSuite, TheOtherFilteringStillFailsEveryMutantAndPassesEveryAlternativ
     }
     std::printf("%d scenes graded with explicit trilinear filtering: %zu mutants, %zu alternatives\n", flipped,
                 mutants.size(), alternatives.size());
+    fs::remove_all(root);
+}
+
+// Points follow severity on the project's own mutants: in every stage that
+// has mutants wrong at one condition only (mutants.json "conditions": a
+// step other than 1, exact zeros, a white background, ...), each of them
+// keeps more points than every mutant of the stage visible on at least 40%
+// of the pixels of the stage's scenes (weighted as the scenes are), and
+// loses at least 2 of 10. A condition's scenes are there to catch its
+// mistakes, not to make them cost as much as a broken stage. Heavy: grades
+// every mutant of those stages.
+double pixelsOff(const json& stage) {
+    double off = 0.0, weights = 0.0;
+    for (const json& scene : stage.value("scenes", json::array())) {
+        const double w = scene.value("weight", 1.0);
+        off += w * scene.value("metrics", json::object()).value("fraction_over", 0.0);
+        weights += w;
+    }
+    return weights > 0 ? off / weights : 0.0;
+}
+
+TEST(GradingCalibration, AMistakeAtOneConditionCostsLessThanOneSeenEverywhere) {
+    std::set<std::string> stages;
+    for (const Mutant& m : loadMutants())
+        if (!m.conditions.empty()) stages.insert(m.stage);
+    std::vector<Mutant> mutants;
+    for (const Mutant& m : loadMutants())
+        if (stages.count(m.stage)) mutants.push_back(m);
+    const fs::path root = scratch("severity");
+    const std::vector<json> reports = gradeVariants(mutants, root);
+    ASSERT_EQ(reports.size(), mutants.size());
+    std::map<std::string, double> narrowest, broadest;  // per stage: the least a one-condition mutant keeps,
+                                                        // the most one seen on >= 40% keeps
+    for (std::size_t i = 0; i < mutants.size(); ++i) {
+        const json& stage = reports[i]["stages"].at(0);
+        const double score = 10.0 * stage["score"].get<double>() / stage["max_score"].get<double>();
+        const double off = pixelsOff(stage);
+        const Mutant& m = mutants[i];
+        std::printf("%-14s %-36s %5.1f%% of pixels %2zu items failed %5.2f/10 %s\n", m.stage.c_str(), m.name.c_str(),
+                    100.0 * off, failedItems(stage).size(), score, m.conditions.empty() ? "" : "one condition");
+        if (!m.conditions.empty()) {
+            narrowest[m.stage] = narrowest.count(m.stage) ? std::min(narrowest[m.stage], score) : score;
+            EXPECT_LE(score, 8.0 + 1e-9) << m.name;
+        }
+        if (off >= 0.4) broadest[m.stage] = broadest.count(m.stage) ? std::max(broadest[m.stage], score) : score;
+    }
+    for (const auto& [stage, least] : narrowest) {
+        if (!broadest.count(stage)) continue;
+        std::printf("%-14s one condition keeps >= %.2f, seen on >= 40%% of pixels keeps <= %.2f\n", stage.c_str(),
+                    least, broadest[stage]);
+        EXPECT_LT(broadest[stage], least) << stage;
+    }
+    EXPECT_GE(narrowest.size(), 5u);
     fs::remove_all(root);
 }
 

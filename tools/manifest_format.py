@@ -4,7 +4,7 @@ Used by tools/mutant_hints.py; keeps hand edits and generated hints in one
 readable style."""
 import json
 
-ORDER = ["title", "order", "points", "about", "functions", "requires", "files", "cpp_functions",
+ORDER = ["title", "order", "points", "about", "functions", "requires", "conditions", "files", "cpp_functions",
          "scenes", "checks", "hints"]
 
 

@@ -15,7 +15,10 @@
 //                  "about": "what this scene shows",        // optional, shown in reports
 //                  "functions": ["mip_ray"]},          // what it exercises (default: all)
 //                 {"name": "...", "scene": "...", "hidden": true} ],  // graded, never shipped
-//     "checks": [ {"name": "phong_random", "weight": 1} ],    // function_checks.h
+//     "checks": [ {"name": "phong_random", "weight": 1,         // function_checks.h
+//                  "conditions": ["signed"]} ],           // conditions its inputs vary
+//     "conditions": ["zeros"],               // conditions the handout names that no rule
+//                                            // derives from the code (tests/test_stage_coverage.cpp)
 //     "files": ["mip.glsl"],                 // optional: the stage's source files
 //     "cpp_functions": ["planeBoxPolygon"],  // C++ stages: the functions it defines
 //     "hints": [ {"failed": ["ct_signed_air"], "hints": ["Looks like ..."]} ]
@@ -125,6 +128,7 @@ struct GradedCheck {
     std::string name;
     double weight = 1.0;
     std::vector<std::string> functions;  // the stage functions it grades (default: all)
+    std::vector<std::string> conditions;  // the conditions its random inputs vary ("signed", ...)
 };
 
 // A known mistake's signature: the items a stage fails (sorted names) and
@@ -147,6 +151,10 @@ struct StageManifest {
     std::vector<std::string> cppFunctions;  // stage_library.h names, for C++ stages
     std::vector<std::string> functions;     // what students write (the handout's checklist)
     std::vector<std::string> requires;      // stages whose functions this one calls (prerequisites)
+    // Conditions the handout names beyond those the coverage test derives
+    // from the stage's code ("zeros", "background", "interpolation:nearest"):
+    // each must be shown by a graded item (tests/test_stage_coverage.cpp).
+    std::vector<std::string> conditions;
     std::vector<StageHint> hints;
 };
 

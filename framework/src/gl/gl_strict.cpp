@@ -135,7 +135,10 @@ void parkSamplerUniforms(unsigned program) {
             glUniform1i(glGetUniformLocation(program, element.c_str()), kFirstParkingUnit + index);
         }
     }
-    glUseProgram(GLuint(previous));
+    // The program current before may have been deleted while current (a
+    // destroyed engine's last): it was gone as soon as this one was used, and
+    // using its name again is GL_INVALID_VALUE at the next draw's check.
+    glUseProgram(glIsProgram(GLuint(previous)) ? GLuint(previous) : 0);
 }
 
 void enableStrictGlChecks(const GlContext& context) {

@@ -150,8 +150,9 @@ std::vector<GradedScene> readScenes(const json& j, const std::filesystem::path& 
 std::vector<GradedCheck> readChecks(const json& j, const std::string& path) {
     std::vector<GradedCheck> checks;
     forEachObject(j, "checks", path, [&](const json& c, const std::string& where) {
-        onlyKeys(c, where, {"name", "weight", "functions"});
-        checks.push_back({text(c, "name", where, true), number(c, "weight", 1.0, where), stringList(c, "functions", where)});
+        onlyKeys(c, where, {"name", "weight", "functions", "conditions"});
+        checks.push_back({text(c, "name", where, true), number(c, "weight", 1.0, where), stringList(c, "functions", where),
+                          stringList(c, "conditions", where)});
     });
     return checks;
 }
@@ -199,7 +200,7 @@ StageManifest loadStageManifest(const std::string& root, const std::string& stag
     const json j = json_text::readJsonFile(path);
     if (!j.is_object()) throw Error(path + ": expected an object");
     onlyKeys(j, path, {"title", "order", "about", "points", "tolerance", "scenes", "checks", "files", "cpp_functions",
-                       "functions", "requires", "hints"});
+                       "functions", "requires", "hints", "conditions"});
     StageManifest m;
     m.stage = stage;
     m.title = text(j, "title", path, true);
@@ -216,6 +217,7 @@ StageManifest loadStageManifest(const std::string& root, const std::string& stag
     for (const std::string& f : m.cppFunctions)
         if (!isStageFunction(f)) throw Error(path + ": cpp_functions: '" + f + "' is not a C++ stage function");
     m.functions = stringList(j, "functions", path);
+    m.conditions = stringList(j, "conditions", path);
     m.requires = stringList(j, "requires", path);
     checkItemFunctions(m, path);
     m.hints = readHints(j, m, path);

@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "voxlab/renderer.h"
+
 namespace voxlab::grading {
 
 namespace {
@@ -185,15 +187,20 @@ std::vector<std::string> requiredStages(const std::string& referenceRoot, const 
 std::vector<std::string> frameworkStages(const std::string& shadersRoot, const std::string& referenceRoot) {
     const std::vector<std::string> stages = stageNames(referenceRoot);
     std::set<std::string> found;
+    auto addIncluded = [&](const std::string& glsl) {
+        for (const Use& include : scanGlsl(glsl).includes) {
+            const std::string top = include.name.substr(0, include.name.find('/'));
+            if (std::binary_search(stages.begin(), stages.end(), top)) found.insert(top);
+        }
+    };
     std::error_code ec;
     for (const char* part : {"voxlab", "renderers", "precompute"})
-        for (const auto& e : fs::directory_iterator(fs::path(shadersRoot) / part, ec)) {
-            if (!e.is_regular_file(ec)) continue;
-            for (const Use& include : scanGlsl(readText(e.path())).includes) {
-                const std::string top = include.name.substr(0, include.name.find('/'));
-                if (std::binary_search(stages.begin(), stages.end(), top)) found.insert(top);
-            }
-        }
+        for (const auto& e : fs::directory_iterator(fs::path(shadersRoot) / part, ec))
+            if (e.is_regular_file(ec)) addIncluded(readText(e.path()));
+    // The shaders renderers make from a template, which names its stage by a
+    // placeholder (ray_value.frag.in: minip, average, attenuated_mip).
+    for (const auto& renderer : rendererRegistry().all())
+        for (const auto& [name, glsl] : renderer->generatedShaders()) addIncluded(glsl);
     return {found.begin(), found.end()};
 }
 

@@ -24,7 +24,8 @@ std::vector<std::string> requiredStages(const std::string& referenceRoot, const 
 
 // The stages whose GLSL the framework's own shaders include (shaders/
 // voxlab, renderers and precompute; not the probes, which each include
-// their own stage), found by reading those files.
+// their own stage), found by reading those files and the shaders renderers
+// make from templates (the ray-value renderers' minip, average, ...).
 std::vector<std::string> frameworkStages(const std::string& shadersRoot, const std::string& referenceRoot);
 
 // Checks the graded stage's GLSL files in `impl`/`stage` against the

@@ -569,13 +569,17 @@ TEST(GradeCommand, RenderExpectedLeavesOnlyTheExpectedOutputs) {
     std::vector<std::string> files;
     for (const auto& e : fs::recursive_directory_iterator(out)) files.push_back(fs::relative(e.path(), out).string());
     std::sort(files.begin(), files.end());
-    std::vector<std::string> want = {"mip", "mip/checks"};
+    // The record of what was rendered (expected.json: no hidden scenes) and
+    // by which GL (gl.txt), beside the outputs.
+    std::vector<std::string> want = {"expected.json", "mip", "mip/checks", "mip/gl.txt"};
     const StageManifest mip = loadStageManifest((kSource / "reference").string(), "mip");
     for (const GradedScene& scene : mip.scenes)
         if (!scene.hidden) want.push_back("mip/" + scene.name + ".png");
     for (const GradedCheck& check : mip.checks) want.push_back("mip/checks/" + check.name + ".json");
     std::sort(want.begin(), want.end());
     EXPECT_EQ(files, want);  // no reference_stages.so, no .work, no hidden scene
+    std::ifstream record(out / "expected.json");
+    EXPECT_FALSE(nlohmann::json::parse(record).value("hidden_scenes", true));
 }
 
 }  // namespace

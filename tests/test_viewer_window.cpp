@@ -245,7 +245,7 @@ TEST_F(ViewerWindow, AReleaseShowsTheExpectedImageHoweverTheSceneIsOpened) {
     auto view = [&](const std::string& name, const std::string& argument, const std::string& load) {
         std::ofstream(path(name + ".vs")) << load << "panel tf off\npanel controls off\nsplit on\nwait 3\nscreenshot "
                                           << path(name + ".png") << "\nquit\n";
-        const CommandResult r = runShell("cd " + release.string() + " && env VOXLAB_ROOT=" + release.string() +
+        const CommandResult r = runShell("env -C " + release.string() + " VOXLAB_ROOT=" + release.string() +
                                              " xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(VOXLAB_BINARY) +
                                              " view " + argument + " --script " + path(name + ".vs") +
                                              " --window-size 640x400",

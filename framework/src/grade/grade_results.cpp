@@ -9,7 +9,6 @@
 
 #include "html_text.h"
 #include "voxlab/grader.h"
-#include "voxlab/grading.h"
 #include "voxlab/untrusted_text.h"
 
 namespace voxlab {
@@ -329,13 +328,13 @@ std::string summaryTable(const json& report) {
         // not yet implemented itself reaches its own in every scene: no list).
         for (const json& scene : html::array(stage, "scenes")) {
             if (html::text(stage, "status") == "not_implemented") break;
-            std::vector<std::string> reached;
+            std::string reached;  // "gradient/gradient_central(), shading/phong()"
             for (const json& stub : html::array(scene, "not_implemented_reached"))
-                if (stub.is_string()) reached.push_back(stub.get<std::string>());
+                if (stub.is_string()) reached += (reached.empty() ? "" : ", ") + stub.get<std::string>() + "()";
             if (reached.empty()) continue;
             out += pad("", 15) + terminalLine("  " + html::text(scene, "name") + ": " +
                                               (html::text(scene, "status") == "blocked" ? "blocked, " : "") +
-                                              "reached not yet implemented " + stubListText(reached)) + "\n";
+                                              "reached not yet implemented " + reached) + "\n";
         }
     }
     out += std::string(100, '-') + "\n";

@@ -212,6 +212,15 @@ json scoreCheck(const GradedCheck& check, const StageRun& run, const RunOutcome&
     return entry;
 }
 
+// The prerequisites' stubs that blocked scenes, each once.
+std::vector<std::string> blockers(const json& scenes) {
+    std::vector<std::string> by;
+    for (const json& e : scenes)
+        for (const json& stub : e.value("blocked_by", json::array()))
+            if (stub.is_string() && !std::count(by.begin(), by.end(), stub.get<std::string>())) by.push_back(stub);
+    return by;
+}
+
 // The stage's status and one-line message.
 std::pair<std::string, std::string> stageStatus(const RunOutcome& outcome, const std::string& compileLog,
                                                 const json& scenes, const json& checks) {
@@ -242,18 +251,53 @@ std::pair<std::string, std::string> stageStatus(const RunOutcome& outcome, const
         for (const std::string& s : outcome.stubs) names += (names.empty() ? "" : ", ") + safeText(s, kMaxNameBytes);
         return {"not_implemented", names + (outcome.stubs.size() == 1 ? " is" : " are") + " not yet implemented"};
     }
-    std::vector<std::string> by;  // the prerequisites' stubs that blocked scenes
-    for (const json& e : scenes)
-        for (const json& stub : e.value("blocked_by", json::array()))
-            if (stub.is_string() && !std::count(by.begin(), by.end(), stub.get<std::string>())) by.push_back(stub);
     const std::string blockedNote = blocked == 0 ? "" : "; " + std::to_string(blocked) + " blocked by " +
-                                                            stubListText(by) + " (not yet implemented): not graded";
+                                                            stubListText(blockers(scenes)) + " (not yet implemented): not graded";
     if (allPassed && blocked > 0)
         return {"blocked", "every item that ran this stage's code is within its tolerance" + blockedNote};
     if (allPassed) return {"passed", "every scene and check within its tolerance"};
     return {firstError.empty() ? "failed" : "error",
             std::to_string(failed) + " of " + std::to_string(scenes.size() + checks.size() - blocked) +
                 " items outside tolerance" + blockedNote + (firstError.empty() ? "" : "; " + firstError)};
+}
+
+}  // namespace
+
+namespace {
+
+struct Points {
+    double points = 0.0, score = 0.0;   // the stage's points that were graded, and its score
+    json allPass;                      // the share only a stage with every item passed earns
+    std::vector<std::string> failed, blocked;  // sorted: a mistake's signature, and the blocked items
+};
+
+// Points per item, in proportion to weight, for all but the share that only
+// a stage with every item passed earns (grading.h); sets each item's
+// max_score and score. Blocked scenes are not graded: the part of the stage
+// that ran its own code is graded as the whole stage would be, for its
+// share of the points.
+Points awardPoints(double stagePoints, double weightSum, double blockedWeight, double credit, json& scenes, json& checks) {
+    Points p;
+    const double gradableWeight = weightSum - blockedWeight;
+    p.points = weightSum > 0 ? stagePoints * gradableWeight / weightSum : stagePoints;
+    const double perWeight = pointsPerWeight(p.points, gradableWeight);
+    for (json* items : {&scenes, &checks})
+        for (json& e : *items) {
+            const bool isBlocked = e["status"] == "blocked";
+            e["max_score"] = isBlocked ? 0.0 : perWeight * e["weight"].get<double>();
+            e["score"] = e["max_score"].get<double>() * e["credit"].get<double>();
+            if (isBlocked) p.blocked.push_back(e["name"]);
+            else if (e["status"] != "passed") p.failed.push_back(e["name"]);
+        }
+    std::sort(p.failed.begin(), p.failed.end());
+    const bool allPassed = gradableWeight > 0 && p.failed.empty();
+    const double bonusMax = allPassPoints(p.points, gradableWeight);
+    p.allPass = {{"max_score", bonusMax},
+                 {"score", allPassed ? bonusMax : 0.0},
+                 {"status", allPassed ? "passed" : "failed"},
+                 {"message", allPassed ? "every scene and check passed" : "earned only when every scene and check passes"}};
+    p.score = perWeight * credit + (allPassed ? bonusMax : 0.0);
+    return p;
 }
 
 }  // namespace
@@ -294,41 +338,15 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
         entry["credit"] = c;
         checks.push_back(entry);
     }
-    // Points per item, in proportion to weight, for all but the share that
-    // only a stage with every item passed earns (grading.h). Blocked scenes
-    // are not graded: the part of the stage that ran its own code is graded
-    // as the whole stage would be, for its share of the points.
-    const double gradableWeight = weightSum - blockedWeight;
-    const double points = weightSum > 0 ? manifest.points * gradableWeight / weightSum : manifest.points;
-    const double perWeight = pointsPerWeight(points, gradableWeight);
-    std::vector<std::string> failed, blocked;  // the items that did not pass, sorted: a mistake's signature
-    for (json* items : {&scenes, &checks})
-        for (json& e : *items) {
-            const bool isBlocked = e["status"] == "blocked";
-            e["max_score"] = isBlocked ? 0.0 : perWeight * e["weight"].get<double>();
-            e["score"] = e["max_score"].get<double>() * e["credit"].get<double>();
-            if (isBlocked) blocked.push_back(e["name"]);
-            else if (e["status"] != "passed") failed.push_back(e["name"]);
-        }
-    std::sort(failed.begin(), failed.end());
-    const bool allPassed = gradableWeight > 0 && failed.empty();
+    const Points p = awardPoints(manifest.points, weightSum, blockedWeight, credit, scenes, checks);
     stage["scenes"] = scenes;
     stage["checks"] = checks;
-    if (!blocked.empty()) {
-        std::vector<std::string> by;
-        for (const json& e : scenes)
-            for (const json& stub : e.value("blocked_by", json::array()))
-                if (!std::count(by.begin(), by.end(), stub.get<std::string>())) by.push_back(stub.get<std::string>());
-        stage["max_score"] = points;
-        stage["blocked"] = {{"items", blocked}, {"by", by}, {"points", manifest.points - points}};
+    if (!p.blocked.empty()) {
+        stage["max_score"] = p.points;
+        stage["blocked"] = {{"items", p.blocked}, {"by", blockers(scenes)}, {"points", manifest.points - p.points}};
     }
-    const double bonusMax = allPassPoints(points, gradableWeight);
-    stage["all_pass"] = {{"max_score", bonusMax},
-                         {"score", allPassed ? bonusMax : 0.0},
-                         {"status", allPassed ? "passed" : "failed"},
-                         {"message", allPassed ? "every scene and check passed"
-                                               : "earned only when every scene and check passes"}};
-    stage["score"] = perWeight * credit + (allPassed ? bonusMax : 0.0);
+    stage["all_pass"] = p.allPass;
+    stage["score"] = p.score;
     stage["sandbox"] = outcome.sandbox;
     // The worker's last line names the GL it rendered with.
     if (const std::size_t gl = outcome.output.rfind("gl: "); gl != std::string::npos)
@@ -343,7 +361,7 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
         stage["log"] = relativePaths(outcome.output, run);
     if (manifest.points == 0.0 && status == "passed") status = "example";
     if (status == "failed") {  // a known mistake's signature (grading.h): what it suggests
-        const std::vector<std::string> hints = hintsFor(manifest, failed, blocked);
+        const std::vector<std::string> hints = hintsFor(manifest, p.failed, p.blocked);
         if (!hints.empty())
             stage["hints"] = std::vector<std::string>(hints.begin(), hints.begin() + std::min<std::size_t>(3, hints.size()));
     }

@@ -24,6 +24,8 @@ assignments/README.md is not generated.
 
     python3 tools/make_assignments.py           # (re)writes assignments/
     python3 tools/make_assignments.py --check   # exit 1 if assignments/ has drifted
+    python3 tools/make_assignments.py --out DIR # the pristine starter code into DIR
+                                                # (the browser page packs it: tools/setup_web.sh)
 """
 import argparse
 import json
@@ -251,11 +253,21 @@ def existing_files():
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--check", action="store_true", help="report drift instead of writing")
+    parser.add_argument("--out", metavar="DIR", help="write the starter code into DIR (with assignments/README.md) "
+                                                     "instead of assignments/")
     args = parser.parse_args()
     try:
         files = expected_files()
     except GeneratorError as e:
         sys.exit(f"make_assignments: {e}")
+    if args.out:  # a pristine copy elsewhere: the generated files and the README the tool leaves alone
+        for rel, data in list(files.items()) + [(k, open(os.path.join(ASSIGNMENTS, k), "rb").read()) for k in KEEP]:
+            path = os.path.join(args.out, rel)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            with open(path, "wb") as f:
+                f.write(data)
+        print(f"wrote {len(files) + len(KEEP)} files to {args.out}")
+        return
     stale = sorted(existing_files() - set(files))
     if args.check:
         problems = [f"assignments/{rel}: not in reference/ (remove it)" for rel in stale]

@@ -355,12 +355,15 @@ TEST_F(ViewerWindow, KeysDuringA1080pRenderAllTakeEffect) {
     const std::size_t timing = r.out.rfind("frames while rendering in bands: ");
     ASSERT_NE(timing, std::string::npos) << r.out;
     int frames = 0;
-    double median = 0.0, longest = 0.0;
-    ASSERT_EQ(std::sscanf(r.out.c_str() + timing, "frames while rendering in bands: %d, median %lf ms, longest %lf ms",
-                          &frames, &median, &longest), 3) << r.out;
-    std::printf("%d frames while bands rendered: median %.1f ms, longest %.1f ms\n", frames, median, longest);
+    double median = 0.0, longest = 0.0, image = 0.0;
+    ASSERT_EQ(std::sscanf(r.out.c_str() + timing,
+                          "frames while rendering in bands: %d, median %lf ms, longest %lf ms; the last image: %lf ms",
+                          &frames, &median, &longest, &image), 4) << r.out;
+    std::printf("%d frames while bands rendered: median %.1f ms, longest %.1f ms; the last 1080p image %.0f ms\n",
+                frames, median, longest, image);
     EXPECT_GT(frames, 20) << r.out;
-    EXPECT_LT(median, 150.0) << "the UI waited for the render: " << r.out;
+    // (Relative to the render, so that a loaded machine decides the same.)
+    EXPECT_LT(median * 10.0, image) << "the UI waited for the render: " << r.out;
     const Image last = loadPng(path("last.png"));
     EXPECT_EQ(last.width, 1920);
     EXPECT_GT(stats(last, {700, 300, 1220, 800}).mean, 0.05) << "no image after the keys";

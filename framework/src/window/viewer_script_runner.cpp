@@ -148,7 +148,7 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
     }
     if (dragFrames_ > 0 || settling_) return drag(s);
     if (s.dirty || s.interactive) return Continue;  // (interactive: still refining)
-    if (next_ >= steps_.size()) return finished();
+    if (next_ >= steps_.size()) return finished(s);
     const ViewerStep& st = steps_[next_++];
     const std::string& c = st.command;
     try {
@@ -171,7 +171,7 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
         } else if (c == "screenshot") {
             s.screenshotRequest = word(st, 0);
         } else if (c == "quit") {
-            return finished();
+            return finished(s);
         } else {
             failStep(st, "this viewer cannot run '" + c + "'");
         }
@@ -184,12 +184,12 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
     return Continue;
 }
 
-ScriptRunner::Progress ScriptRunner::finished() const {
+ScriptRunner::Progress ScriptRunner::finished(const State& s) const {
     if (!bandFrameMs_.empty()) {  // how the UI kept up while images rendered in bands
         std::vector<double> t = bandFrameMs_;
         std::sort(t.begin(), t.end());
-        std::printf("frames while rendering in bands: %zu, median %.1f ms, longest %.1f ms\n", t.size(), t[t.size() / 2],
-                    t.back());
+        std::printf("frames while rendering in bands: %zu, median %.1f ms, longest %.1f ms; the last image: %.1f ms\n",
+                    t.size(), t[t.size() / 2], t.back(), s.renderMs);
         std::fflush(stdout);
     }
     return Done;
@@ -211,7 +211,7 @@ ScriptRunner::Progress ScriptRunner::rendering(State& s, const ViewerStep& st) {
         std::fflush(stdout);
         return Continue;
     }
-    if (++waitedFrames_ > 3000) failStep(st, "the viewer did not render an image in bands within 3000 frames");
+    if (++waitedFrames_ > 6000) failStep(st, "the viewer did not render an image in bands within 6000 frames");
     return Continue;
 }
 

@@ -232,7 +232,7 @@ bool saveRequestedScreenshot(State& s, bool script) {
         const std::filesystem::path where = std::filesystem::absolute(path, ec);
         s.lastScreenshot = ec ? path : where.lexically_normal().string();
         s.lastScreenshotUntil = Clock::now() + std::chrono::seconds(20);
-        s.say("screenshot saved: " + s.lastScreenshot, 6.0);
+        s.say("screenshot saved: " + std::filesystem::path(path).filename().string() + " (the full path: bottom right)", 6.0);
         if (script) std::printf("screenshot saved: %s\n", s.lastScreenshot.c_str()), std::fflush(stdout);
     } catch (const Error& e) {
         if (script) return std::fprintf(stderr, "voxlab: %s\n", e.what()), false;

@@ -55,6 +55,21 @@ void splitOverlay(State& s, ImDrawList* fg, ImVec2 size, float scale) {
 
 }
 
+// `text` in lines at most `width` wide, broken after a '/' (a path has no
+// spaces to wrap at); a part wider than that alone stays whole.
+std::vector<std::string> pathLines(const std::string& text, float width) {
+    std::vector<std::string> lines(1);
+    for (std::size_t from = 0; from < text.size();) {
+        std::size_t to = text.find('/', from);
+        to = to == std::string::npos ? text.size() : to + 1;
+        const std::string part = text.substr(from, to - from);
+        if (!lines.back().empty() && ImGui::CalcTextSize((lines.back() + part).c_str()).x > width) lines.emplace_back();
+        lines.back() += part;
+        from = to;
+    }
+    return lines;
+}
+
 // Frame time, bottom right, always; in the samples view the samples too;
 // while the image refines, a small pie of its progress.
 void statusLine(const State& s, ImDrawList* fg, ImVec2 size, float scale) {
@@ -77,16 +92,28 @@ void statusLine(const State& s, ImDrawList* fg, ImVec2 size, float scale) {
     } else if (s.interactive) {
         std::snprintf(quality, sizeof quality, "  refining %d/%d", s.refineStep, s.refineSteps);
     }
-    std::string shot;  // where P saved the window, for a while
-    if (!s.lastScreenshot.empty() && Clock::now() < s.lastScreenshotUntil) shot = "  screenshot: " + s.lastScreenshot;
-    char line[1024];
-    std::snprintf(line, sizeof line, "%s  render %.1f ms (%.1f frames/s)  %dx%d%s%s%s", s.scene.renderer.c_str(),
-                  s.renderMs, s.renderMs > 0 ? 1000.0 / s.renderMs : 0.0, s.imageWidth, s.imageHeight, quality, samples,
-                  shot.c_str());
+    char line[320];
+    std::snprintf(line, sizeof line, "%s  render %.1f ms (%.1f frames/s)  %dx%d%s%s", s.scene.renderer.c_str(),
+                  s.renderMs, s.renderMs > 0 ? 1000.0 / s.renderMs : 0.0, s.imageWidth, s.imageHeight, quality, samples);
     const ImVec2 t = ImGui::CalcTextSize(line);
     fg->AddRectFilled(ImVec2(size.x - t.x - 18 * scale, size.y - t.y - 14 * scale), ImVec2(size.x, size.y),
                       IM_COL32(0, 0, 0, 150));
     fg->AddText(ImVec2(size.x - t.x - 10 * scale, size.y - t.y - 8 * scale), IM_COL32(230, 230, 230, 255), line);
+    // Where P saved the window, for a while, over the status line: the full
+    // path, broken after a '/' where it is wider than the window.
+    if (!s.lastScreenshot.empty() && Clock::now() < s.lastScreenshotUntil) {
+        const std::vector<std::string> lines = pathLines("screenshot saved: " + s.lastScreenshot, size.x - 30 * scale);
+        const float h = ImGui::GetTextLineHeight();
+        float y = size.y - t.y - 20 * scale - h * float(lines.size());
+        float widest = 0.0f;
+        for (const std::string& l : lines) widest = std::max(widest, ImGui::CalcTextSize(l.c_str()).x);
+        fg->AddRectFilled(ImVec2(size.x - widest - 18 * scale, y - 4 * scale), ImVec2(size.x, y + h * float(lines.size()) + 4 * scale),
+                          IM_COL32(0, 0, 0, 170));
+        for (const std::string& l : lines) {
+            fg->AddText(ImVec2(size.x - ImGui::CalcTextSize(l.c_str()).x - 10 * scale, y), IM_COL32(160, 230, 160, 255), l.c_str());
+            y += h;
+        }
+    }
     if (!s.interactive) return;
     // The progress mark: a pie that fills as the resolution doubles.
     const float r = 0.5f * t.y, cx = size.x - t.x - 18 * scale - r - 8 * scale, cy = size.y - 0.5f * t.y - 8 * scale;
@@ -275,7 +302,9 @@ void drawOverlays(State& s) {
     errorBox(s, size, scale, noticeBottom);
     if (!s.toast.empty() && Clock::now() < s.toastUntil) {
         const ImVec2 tt = ImGui::CalcTextSize(s.toast.c_str());
-        const ImVec2 at(size.x * 0.5f - tt.x * 0.5f, size.y - 70 * scale);
+        // (Above the screenshot's path, when it is shown.)
+        const bool path = !s.lastScreenshot.empty() && Clock::now() < s.lastScreenshotUntil;
+        const ImVec2 at(size.x * 0.5f - tt.x * 0.5f, size.y - 70 * scale - (path ? 4.0f * ImGui::GetTextLineHeight() : 0.0f));
         fg->AddRectFilled(ImVec2(at.x - 10, at.y - 6), ImVec2(at.x + tt.x + 10, at.y + tt.y + 6), IM_COL32(20, 20, 30, 220), 6);
         fg->AddText(at, IM_COL32(255, 255, 255, 255), s.toast.c_str());
     }

@@ -56,6 +56,17 @@ with zipfile.ZipFile(sys.argv[1], "w") as z:
   fi
 }
 
+# Without a voxlab program (a checkout built elsewhere, VOXLAB_AUTOGRADER_BIN
+# not set) the autograder fails loudly: exit 1, the reason on stderr, never
+# a quiet score of 0.
+mkdir -p "$work/unbuilt/source" "$work/unbuilt/submission" "$work/unbuilt_checkout"
+cp "$student/mip/mip.glsl" "$work/unbuilt/submission/"
+if VOXLAB_AUTOGRADER_ROOT="$work/unbuilt" VOXLAB_AUTOGRADER_VOXLAB="$work/unbuilt_checkout" \
+     bash "$project/tools/gradescope/run_autograder" > "$work/unbuilt.log" 2>&1; then
+  echo "FAIL: run_autograder without a voxlab program exited 0:"; cat "$work/unbuilt.log"; exit 1
+fi
+grep -q "VOXLAB_AUTOGRADER_BIN" "$work/unbuilt.log" || { echo "FAIL: the failure does not say what to set:"; cat "$work/unbuilt.log"; exit 1; }
+
 for layout in proper loose nested assignments zip zip_climb; do grade "$layout" 2026-12-01T12:00:00Z "$layout"; done
 grade proper 2026-12-03T10:00:00+00:00 late
 

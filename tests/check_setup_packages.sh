@@ -47,6 +47,10 @@ cat >"$tmp/bin/cmake" <<'EOF'
 #!/usr/bin/env bash
 echo "cmake $*" >>"$FAKE_LOG"
 EOF
+cat >"$tmp/bin/ctest" <<'EOF'
+#!/usr/bin/env bash
+echo "ctest $*" >>"$FAKE_LOG"
+EOF
 printf '#!/bin/sh\nexit 0\n' >"$tmp/build/bin/voxlab"
 chmod +x "$tmp/bin/"* "$tmp/build/bin/voxlab"
 
@@ -113,6 +117,16 @@ FAKE_INSTALLED="$full" run debian12 --grader
 expect "debian, all installed: exit status" 0 "$rc"
 grep -q '^apt-get' <<<"$log" && fail "debian, all installed: apt-get was called: $log"
 grep -q '^cmake' <<<"$log" || fail "debian, all installed: no build: $log"
+
+# The main job builds what it runs, the voxlab program (whose target brings
+# the stage host); --test builds everything, then runs the tests.
+FAKE_INSTALLED="$full" DISPLAY= WAYLAND_DISPLAY= run debian12
+expect "debian, main job: exit status" 0 "$rc"
+expect "debian, main job: build" "cmake --build $tmp/build -j 1 --target voxlab" "$(grep -- '^cmake --build' <<<"$log")"
+FAKE_INSTALLED="$full" run debian12 --test
+expect "debian, --test: exit status" 0 "$rc"
+expect "debian, --test: build" "cmake --build $tmp/build -j 1" "$(grep -- '^cmake --build' <<<"$log")"
+grep -q '^ctest .*-LE heavy' <<<"$log" || fail "debian, --test: the tests did not run: $log"
 
 # Another system: one line saying it is untested, the same names.
 VOXLAB_SETUP_DRY_RUN=1 run fedora39 --grader

@@ -8,7 +8,9 @@ student release ships, and the Markdown itself:
      drift tests, ...) and keeps every section of its handout;
   2. the rules on small texts: instructor blocks removed, student blocks
      shown, instructor-only files left out, bad markers refused by line;
-  3. --release on a small folder rewrites it and fails on what is left.
+  3. --release on a small folder rewrites it and fails on what is left:
+     instructor material (the mutant suite, a course's files too) and links
+     to files the release does not have (reference/, instructor-only pages).
 
 Usage: check_student_text.py PROJECT_SOURCE_DIR
 Exit: 0 passed, 1 failed.
@@ -94,6 +96,24 @@ def main():
         r = subprocess.run([sys.executable, tool, "--release", tmp], capture_output=True, text=True)
         expect(r.returncode != 0 and "docs/ok.md:2: 'VOXLAB_STAGE_ROOT'" in r.stderr and "'drift'" in r.stderr,
                "--release fails on instructor material left in, naming file, line and term")
+        # The mutant suite, calibration and running a course are instructors' business too.
+        with open(os.path.join(tmp, "docs", "ok.md"), "w", encoding="utf-8") as f:
+            f.write("nothing to hide\nThe mutant suite calibrates it.\nGrade with --assignment courses/a.json.\n")
+        r = subprocess.run([sys.executable, tool, "--release", tmp], capture_output=True, text=True)
+        expect(r.returncode != 0 and "docs/ok.md:2: 'mutant'" in r.stderr and "docs/ok.md:3: '--assignment'" in r.stderr,
+               "--release fails on the mutant suite and a course's files")
+        # A link to what the release does not hold (reference/, a page left out) is broken there.
+        with open(os.path.join(tmp, "docs", "ok.md"), "w", encoding="utf-8") as f:
+            f.write("See [the handout](../reference/mip/README.md), [notes](notes.md) and [this](ok.md#x).\n")
+        r = subprocess.run([sys.executable, tool, "--release", tmp], capture_output=True, text=True)
+        expect(r.returncode != 0 and "'../reference/mip/README.md'" in r.stderr and "'notes.md'" in r.stderr
+               and "'ok.md'" not in r.stderr,
+               "--release fails on links to reference/ and to an instructor-only page, not on one that ships")
+    # The same for the source tree: a shipped page linking reference/ fails --check.
+    problems = st.broken_links("[h](../reference/cubic/README.md) [g](grading.md) [c](courses.md)",
+                               "docs/x.md", st.source_ships(src))
+    expect(len(problems) == 2 and "reference/cubic" in problems[0] and "courses.md" in problems[1],
+           f"--check finds links to reference/ and instructor-only docs/courses.md ({problems})")
 
     print(f"{len(failures)} failure(s)" if failures else "student text: all checks passed")
     return 1 if failures else 0

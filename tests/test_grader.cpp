@@ -130,6 +130,14 @@ TEST_F(Grader, ALoopThatNeverEndsIsATimeoutEvenWhenLlvmpipeCutsItShort) {
     EXPECT_EQ(mip["status"], "timeout") << mip["message"];
     EXPECT_NE(mip["message"].get<std::string>().find("a loop ran away"), std::string::npos) << mip["message"];
     EXPECT_EQ(mip["score"].get<double>(), 0.0);
+    // Found before any scene renders, on a 48-pixel copy of the first
+    // scene, by a count of samples, not a time: no scene then runs its
+    // 65 535 rounds a pixel (on a loaded machine they ran into the limit).
+    EXPECT_NE(mip["message"].get<std::string>().find("at 48x48"), std::string::npos) << mip["message"];
+    for (const json& scene : mip["scenes"])
+        EXPECT_NE(scene["message"].get<std::string>().find("not rendered: a loop ran away"), std::string::npos)
+            << scene["name"] << ": " << scene["message"];
+    std::printf("a runaway MIP graded in %.2f s\n", mip["elapsed_s"].get<double>());
     // The reference's own loop is not a runaway.
     const json good = grade(kSource / "reference", "reference", o);
     EXPECT_EQ(stage(good, "mip")["status"], "passed") << stage(good, "mip")["message"];
@@ -555,6 +563,98 @@ TEST(GradeCommand, BatchWritesAGradebookAndCheckSaysWhatIsMissing) {
     // report folder keeps them (a report may be handed to a student).
     EXPECT_FALSE(fs::exists(root / "reports" / ".expected" / "reference_stages.so"));
     EXPECT_FALSE(fs::exists(root / "check_bob" / ".expected" / "reference_stages.so"));
+}
+
+// A student's own tree (voxlab check runs it whole) in which `stage`'s
+// files are the reference's, `edit` applied, and every other stage is the
+// starter code's (its prerequisites still stubs) except `done`.
+fs::path studentTree(const std::string& name, const std::string& stage, const std::vector<std::string>& done,
+                     const std::string& find = "", const std::string& replace = "") {
+    const fs::path tree = scratch(name) / "assignments";
+    fs::copy(kSource / "assignments", tree, fs::copy_options::recursive);
+    std::vector<std::string> from = done;
+    from.push_back(stage);
+    for (const std::string& s : from)
+        for (const auto& e : fs::directory_iterator(kSource / "reference" / s))
+            if (e.path().extension() == ".glsl" || e.path().extension() == ".cpp")
+                fs::copy_file(e.path(), tree / s / e.path().filename(), fs::copy_options::overwrite_existing);
+    if (!find.empty()) {
+        for (const auto& e : fs::directory_iterator(tree / stage)) {
+            std::string text = readFile(e.path());
+            const std::size_t at = text.find(find);
+            if (at == std::string::npos || e.path().extension() == ".json") continue;
+            text.replace(at, find.size(), replace);
+            std::ofstream(e.path()) << text;
+        }
+    }
+    return tree;
+}
+
+json checkReport(const fs::path& tree, const std::string& stage, CommandResult* result) {
+    const fs::path out = tree.parent_path() / "check";
+    *result = runVoxlab("check --stage " + stage + " --submission " + tree.string() + " --out " + out.string() +
+                            " --quiet",
+                        300);
+    std::ifstream in(out / "report.json");
+    return json::parse(in);
+}
+
+// A correct shadows stage in a tree whose gradient stage is still the
+// starter code: the scenes the gradient's stub reaches are "blocked by
+// gradient/", graded neither for nor against shadows, and the report names
+// the stub each reached; the items that ran shadows' own code are graded
+// as the stage (before: failed, 1.6 / 10, every shaded scene a checkerboard
+// and no word of why).
+TEST(Prerequisites, AStubPrerequisiteBlocksScenesInsteadOfFailingTheStage) {
+    const fs::path tree = studentTree("blocked_shadows", "shadows", {"sampling", "composite"});
+    CommandResult r;
+    const json report = checkReport(tree, "shadows", &r);
+    const json& shadows = report["stages"].at(0);
+    EXPECT_EQ(shadows["status"], "blocked") << shadows["message"];
+    EXPECT_NE(r.out.find("blocked by gradient/"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("reached not yet implemented gradient/"), std::string::npos) << r.out;
+    EXPECT_FALSE(shadows.contains("hints"));
+    int blocked = 0;
+    for (const json& scene : shadows["scenes"]) {
+        if (scene["status"] == "blocked") {
+            ++blocked;
+            EXPECT_EQ(scene["max_score"].get<double>(), 0.0);
+            EXPECT_EQ(scene["blocked_by"].at(0).get<std::string>().rfind("gradient/", 0), 0u) << scene["blocked_by"];
+            EXPECT_NE(scene["message"].get<std::string>().find("blocked by gradient/"), std::string::npos);
+        } else {
+            EXPECT_EQ(scene["status"], "passed") << scene["name"] << ": " << scene["message"];
+            EXPECT_FALSE(scene.contains("not_implemented_reached")) << scene["name"];
+        }
+    }
+    EXPECT_GT(blocked, 0);
+    // What ran the stage's own code earns all it can; the blocked part is not counted.
+    EXPECT_GT(shadows["max_score"].get<double>(), 0.0);
+    EXPECT_DOUBLE_EQ(shadows["score"].get<double>(), shadows["max_score"].get<double>());
+    EXPECT_DOUBLE_EQ(shadows["max_score"].get<double>() + shadows["blocked"]["points"].get<double>(), 4.0 + 6.0);
+    const std::string html = readFile(tree.parent_path() / "check" / "index.html");
+    EXPECT_NE(html.find("Reached functions not yet implemented"), std::string::npos);
+}
+
+// A '>' for the handout's '>=' in marching cubes' case numbers, in a tree
+// whose gradient and shading stages are stubs: only the random-cubes check
+// tells, and its hint is the one about corners at the isovalue. The shaded
+// scenes are blocked, so their failures must not match the signatures of
+// edgeCrossing's mistakes (before: three hints, all blaming edgeCrossing).
+TEST(Prerequisites, HintsComeOnlyFromItemsThatRanTheStagesOwnCode) {
+    const fs::path tree = studentTree("mc_hint", "marching_cubes", {"sampling"}, "if (values[c] >= isovalue)",
+                                      "if (values[c] > isovalue)");
+    CommandResult r;
+    const json report = checkReport(tree, "marching_cubes", &r);
+    const json& mc = report["stages"].at(0);
+    EXPECT_EQ(mc["status"], "failed") << mc["message"];
+    ASSERT_TRUE(mc.contains("hints")) << mc.dump(2).substr(0, 3000);
+    ASSERT_EQ(mc["hints"].size(), 1u) << mc["hints"];
+    EXPECT_NE(mc["hints"][0].get<std::string>().find("exactly at the isovalue"), std::string::npos) << mc["hints"];
+    for (const json& hint : mc["hints"]) EXPECT_EQ(hint.get<std::string>().find("vertex"), std::string::npos) << hint;
+    int blocked = 0;
+    for (const json& scene : mc["scenes"]) blocked += scene["status"] == "blocked";
+    EXPECT_GT(blocked, 0) << "the shaded scenes reach the shading and gradient stubs";
+    for (const json& check : mc["checks"]) EXPECT_EQ(check["status"], "failed") << check["name"];
 }
 
 // `grade --render-expected DIR` (what a student release ships as expected/)

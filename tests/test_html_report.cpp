@@ -372,6 +372,24 @@ json classGradebook() {
                                                     stage("iso", 0, 10, "not_implemented", "")})}}})}};
 }
 
+// voxlab grade --batch writes similarity.html beside the class page, which
+// links it (and says so when the comparison was off or failed).
+TEST(ClassHtmlReport, LinksTheSimilarityReport) {
+    json gradebook = classGradebook();
+    gradebook["similarity"] = {{"page", "similarity.html"}, {"summary", "2 pair(s) listed"}};
+    const std::string html = voxlab::classHtmlReportPage(gradebook);
+    const std::vector<std::string> links = attributeValues(html, "href");
+    EXPECT_NE(std::find(links.begin(), links.end(), "similarity.html"), links.end()) << html;
+    EXPECT_NE(visibleText(html).find("2 pair(s) listed"), std::string::npos);
+    gradebook["similarity"] = {{"off", true}};
+    EXPECT_NE(visibleText(voxlab::classHtmlReportPage(gradebook)).find("not compared"), std::string::npos);
+    gradebook["similarity"] = {{"error", "<b>disk full</b>"}};
+    const std::string failed = voxlab::classHtmlReportPage(gradebook);
+    EXPECT_NE(failed.find("&lt;b&gt;disk full"), std::string::npos);
+    const std::vector<std::string> none = attributeValues(failed, "href");
+    EXPECT_EQ(std::find(none.begin(), none.end(), "similarity.html"), none.end()) << "a link to a page never written";
+}
+
 TEST(ClassHtmlReport, ACompileErrorIsVisibleTextInItsRow) {
     const fs::path dir = freshFolder("class_compile_error");
     voxlab::writeClassHtmlReport(classGradebook(), dir.string());

@@ -15,13 +15,17 @@ kept (the slicer is a worked example). Grading scenes marked "hidden" in a
 stage's grading.json are left out of its generated manifest, and their scene
 files are not copied: they are graded but never shipped. A stage's
 mutants.json (its mutant suite, which holds solution text) is never copied.
-Every other file (handouts, scenes, images, volumes: text or binary) is
-copied byte for byte. The files the tool rewrites (.glsl, .cpp, .h and
-grading.json) must be UTF-8 text.
+Each stage's handout (README.md) gets, under its title, the stages it
+needs: its manifest's "requires" and theirs. Every other file (scenes,
+images, volumes: text or binary) is copied byte for byte. The files the
+tool rewrites (.glsl, .cpp, .h, grading.json and the handouts) must be
+UTF-8 text.
 assignments/README.md is not generated.
 
     python3 tools/make_assignments.py           # (re)writes assignments/
     python3 tools/make_assignments.py --check   # exit 1 if assignments/ has drifted
+    python3 tools/make_assignments.py --out DIR # the pristine starter code into DIR
+                                                # (the browser page packs it: tools/setup_web.sh)
 """
 import argparse
 import json
@@ -153,12 +157,62 @@ def without_hidden_scenes(rel, text):
 
 def rewritten(rel):
     """Whether the tool rewrites this file (else it is copied byte for byte)."""
-    return rel.endswith((".glsl", ".cpp", ".h")) or os.path.basename(rel) == "grading.json"
+    return rel.endswith((".glsl", ".cpp", ".h")) or os.path.basename(rel) == "grading.json" or is_handout(rel)
+
+
+def is_handout(rel):
+    """A stage's handout: README.md beside its grading.json."""
+    parts = rel.split(os.sep)
+    return len(parts) == 2 and parts[1] == "README.md" and \
+        os.path.isfile(os.path.join(REFERENCE, parts[0], "grading.json"))
+
+
+def manifests():
+    """Every stage's grading manifest, by stage."""
+    found = {}
+    for stage in sorted(os.listdir(REFERENCE)):
+        path = os.path.join(REFERENCE, stage, "grading.json")
+        if os.path.isfile(path):
+            with open(path, encoding="utf-8") as f:
+                found[stage] = json.load(f)
+    return found
+
+
+def prerequisites_line(stage, all_manifests):
+    """The handout's header line: the stages this one needs (its manifest's
+    "requires"), those they need in turn, and what happens until they are done."""
+    def named(s):
+        m = all_manifests.get(s, {})
+        return f"`{s}` (stage {m.get('order', '?')}, {m.get('title', s)})"
+    direct = all_manifests[stage].get("requires", [])
+    if not direct:
+        return "> **Needs:** no other stage (its grading manifest requires none).\n"
+    seen, todo = list(direct), list(direct)
+    while todo:
+        for r in all_manifests.get(todo.pop(0), {}).get("requires", []):
+            if r not in seen and r != stage:
+                seen.append(r)
+                todo.append(r)
+    through = [s for s in seen if s not in direct]
+    line = "> **Needs:** " + ", ".join(named(s) for s in direct)
+    if through:
+        line += "; through them also " + ", ".join(f"`{s}`" for s in through)
+    return (line + ".\n> Until those are done, their magenta checkerboard covers this stage's scenes: "
+            "`voxlab check` reports such a scene as \"blocked by\" the missing function and grades "
+            "only what runs your code (docs/grading.md).\n")
+
+
+def with_prerequisites(rel, text, all_manifests):
+    """The handout with its prerequisites under its title (the first line)."""
+    stage = rel.split(os.sep)[0]
+    first, _, rest = text.partition("\n")
+    return first + "\n\n" + prerequisites_line(stage, all_manifests) + rest
 
 
 def expected_files():
     """Every file of assignments/ the tool owns, as its exact bytes."""
     files, hidden = {}, set()
+    all_manifests = manifests()
     for folder, _, names in os.walk(REFERENCE):
         for name in sorted(names):
             if name in NEVER_SHIPPED:
@@ -178,6 +232,8 @@ def expected_files():
             if name == "grading.json":
                 text, paths = without_hidden_scenes(rel, text)
                 hidden |= paths
+            if is_handout(rel):
+                text = with_prerequisites(rel, text, all_manifests)
             files[rel] = generate(rel, text).encode("utf-8")
     for rel in hidden:
         files.pop(rel, None)
@@ -197,11 +253,21 @@ def existing_files():
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--check", action="store_true", help="report drift instead of writing")
+    parser.add_argument("--out", metavar="DIR", help="write the starter code into DIR (with assignments/README.md) "
+                                                     "instead of assignments/")
     args = parser.parse_args()
     try:
         files = expected_files()
     except GeneratorError as e:
         sys.exit(f"make_assignments: {e}")
+    if args.out:  # a pristine copy elsewhere: the generated files and the README the tool leaves alone
+        for rel, data in list(files.items()) + [(k, open(os.path.join(ASSIGNMENTS, k), "rb").read()) for k in KEEP]:
+            path = os.path.join(args.out, rel)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            with open(path, "wb") as f:
+                f.write(data)
+        print(f"wrote {len(files) + len(KEEP)} files to {args.out}")
+        return
     stale = sorted(existing_files() - set(files))
     if args.check:
         problems = [f"assignments/{rel}: not in reference/ (remove it)" for rel in stale]

@@ -16,8 +16,11 @@
 # no hidden grading scene went along (its scene file or its golden image).
 # Every shipped Markdown file is its student text (tools/student_text.py):
 # blocks marked for instructors are removed, those marked for students shown,
-# instructor-only files left out; the release fails if instructor material
-# (build/tests, VOXLAB_STAGE_ROOT, the generator, drift tests) is left in it.
+# instructor-only files left out (docs/courses.md, docs/instructors.md, ...);
+# the release fails if instructor material (build/tests, VOXLAB_STAGE_ROOT,
+# the generator, drift tests, the mutant suite and calibration, running a
+# course) is left in it, or if a link points at a file it does not ship
+# (reference/, an instructor-only page).
 # It prints one line as each step starts and one with its time as it ends.
 # On 2 cores: about 4.5 minutes when voxlab has to be built from scratch,
 # 12 s when the build folder is up to date (10 s of it rendering expected/).
@@ -85,7 +88,7 @@ tools/setup.sh                 # installs what is missing, builds, opens the vie
   (S again) show your image against the expected one, the scene as graded.
 - **Check it** the way it will be graded: `build/bin/voxlab check --stage mip`, then open
   `voxlab-check/index.html`. How grading works: `docs/grading.md`.
-- **C++ stages** (`texslice2d`, `texslice3d`) are compiled into `voxlab`: rebuild with
+- **C++ stages** (five: `texslice2d`, `texslice3d`, `splat`, `shearwarp`, `marching_cubes`) are compiled into `voxlab`: rebuild with
   `cmake --build build` after editing them (`voxlab check` compiles them itself).
 - The framework's full guide (conventions, scene files, datasets, renderers, the viewer):
   `README_framework.md`.

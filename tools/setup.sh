@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
 # voxlab set-up, from a fresh Debian 12 machine to a running program.
 #
-#   tools/setup.sh          install what is missing, build, and run the main
-#                           job: the viewer on the default scene when a
-#                           display is available, else a headless render of
-#                           the default scene to a PNG whose path it prints.
-#   tools/setup.sh --test   the same set-up, then the whole test suite
-#                           (tests labelled "heavy" too with --test-all).
+#   tools/setup.sh          install what is missing, build what the main job
+#                           needs (the voxlab program and the stage host it
+#                           runs), and run it: the viewer on the default
+#                           scene when a display is available, else a
+#                           headless render of the default scene to a PNG
+#                           whose path it prints.
+#   tools/setup.sh --test   the same set-up, then builds everything (the
+#                           tests, the fuzzers, the benchmarks) and runs the
+#                           test suite (tests labelled "heavy" too with
+#                           --test-all).
 #   tools/setup.sh --web    the same set-up, then the browser workbench:
 #                           tools/setup_web.sh builds it into build-web/site
 #                           (docs/web.md).
@@ -93,8 +97,14 @@ if [ "$mode" = --grader ]; then
   cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DVOXLAB_BUILD_TESTS=OFF -DVOXLAB_WITH_VIEWER=OFF >/dev/null
   cmake --build "$build" -j "$jobs" --target voxlab
 else
+  # Configured for the tests too (so that --test later only builds more),
+  # but only the --test modes build them: the main job needs the voxlab
+  # program (its target builds the stage host it runs beside it).
   cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DVOXLAB_BUILD_TESTS=ON -DVOXLAB_WITH_VIEWER=ON >/dev/null
-  cmake --build "$build" -j "$jobs"
+  case "$mode" in
+    --test|--test-all) cmake --build "$build" -j "$jobs" ;;
+    *) cmake --build "$build" -j "$jobs" --target voxlab ;;
+  esac
 fi
 
 export LP_NUM_THREADS="${LP_NUM_THREADS:-$jobs}"

@@ -8,7 +8,9 @@
 #      build-web/third_party with apt's own client, through a private list
 #      folder (nothing in /etc/apt changes), since emscripten's "ports" would
 #      download from the internet at build time;
-#   3. configures web/ with emcmake and builds it.
+#   3. generates the pristine starter code (tools/make_assignments.py --out)
+#      and installs markdown-it (npm ci, web/page's lock file), then
+#      configures web/ with emcmake and builds it.
 #
 #   tools/setup_web.sh --test   the same, then the browser test
 #       (web/test/browser_test.mjs: headless chromium, screenshots and
@@ -37,6 +39,7 @@ if [ "$mode" = --test ] && [ ! -d "$tree/reference" ]; then
 fi
 
 packages=(emscripten chromium glslang-tools fonts-dejavu-core libglm-dev libstb-dev nlohmann-json3-dev)
+command -v npm >/dev/null || packages+=(npm)  # markdown-it for the page, playwright-core for its test
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -87,8 +90,30 @@ elif [ ! -d "$build/expected" ] || [ -n "$(find "$root/reference" "$root/shaders
   rm -rf "$build/expected" && mv "$build/expected.tmp" "$build/expected" && touch "$build/expected"
 fi
 
+# The starter code the page offers: the pristine one, generated from
+# reference/ (tools/make_assignments.py --out), never assignments/ as it is
+# on this machine, which may hold someone's half-done work. A release has no
+# generator: its assignments/ go in as they are, and this says so.
+starter="$build/starter"
+if [ -d "$tree/reference" ] && [ -f "$tree/tools/make_assignments.py" ]; then
+  rm -rf "$starter.tmp" && python3 "$tree/tools/make_assignments.py" --out "$starter.tmp" >/dev/null
+  rm -rf "$starter" && mv "$starter.tmp" "$starter"
+  if ! python3 "$tree/tools/make_assignments.py" --check >/dev/null 2>"$build/starter-drift.txt"; then
+    echo "setup-web: $tree/assignments differs from the starter code ($(grep -c ': ' "$build/starter-drift.txt") files," \
+         "e.g. $(head -n 1 "$build/starter-drift.txt" | cut -d: -f1)); the page packs the pristine starter from reference/"
+  fi
+  echo "setup-web: packing the pristine starter code (tools/make_assignments.py --out $starter)"
+else
+  starter="$tree/assignments"
+  echo "setup-web: packing $starter as it is (no reference/ to generate the pristine starter from)"
+fi
+
+# The handouts' Markdown renderer (markdown-it), pinned by web/page/package-lock.json.
+[ -f "$root/web/page/node_modules/markdown-it/package.json" ] || npm ci --prefix "$root/web/page" --no-audit --no-fund --silent
+
 # 3. Configure and build.
-emcmake cmake -S "$root/web" -B "$build" -DCMAKE_BUILD_TYPE=Release -DVOXLAB_WEB_TREE="$tree" >/dev/null
+emcmake cmake -S "$root/web" -B "$build" -DCMAKE_BUILD_TYPE=Release -DVOXLAB_WEB_TREE="$tree" \
+  -DVOXLAB_WEB_STARTER="$starter" >/dev/null
 cmake --build "$build" -j "$jobs"
 echo "setup-web: the page is in $build/site: serve it with"
 echo "  (cd $build/site && /usr/bin/python3 -m http.server 8000)   and open http://localhost:8000/"
@@ -101,7 +126,9 @@ command -v npm >/dev/null || { echo "setup-web: the browser test needs Node.js's
 # The native `voxlab check` of the same stage, whose verdicts the page's
 # self-check must repeat.
 for side in reference assignments; do
-  LP_NUM_THREADS="${LP_NUM_THREADS:-$jobs}" "$root/build/bin/voxlab" check --stage mip --submission "$root/$side" \
+  submission="$root/reference"
+  [ "$side" = assignments ] && submission="$starter"
+  LP_NUM_THREADS="${LP_NUM_THREADS:-$jobs}" "$root/build/bin/voxlab" check --stage mip --submission "$submission" \
     --out "$build/native-check-$side" >/dev/null || true
 done
 node "$root/web/test/browser_test.mjs" "$build/site" "$build/browser-test" \

@@ -20,7 +20,9 @@ code blocks:
 
 tools/make_student_release.sh runs `--release OUT` on what it shipped: every
 Markdown file becomes its student text, and the release fails if instructor
-material is left in it (build/tests, VOXLAB_STAGE_ROOT, drift tests, ...).
+material is left in it (build/tests, VOXLAB_STAGE_ROOT, drift tests, the
+mutant suite, calibration, running a course, ...) or if a link points at a
+file the release does not have (reference/, an instructor-only page).
 The test student_text (tests/CMakeLists.txt) runs `--check ROOT` on the
 Markdown a release ships, without building one.
 
@@ -52,7 +54,18 @@ FORBIDDEN = [
     (re.compile(r"make_assignments|assignments_up_to_date"), "the generator is not in the release"),
     (re.compile(r"\bdrift", re.IGNORECASE), "drift tests are instructors' business"),
     (re.compile(r"<!--\s*/?\s*(instructor|student)"), "a marker left in the student text"),
+    (re.compile(r"mutant|MutantSuite|mutant_hints", re.IGNORECASE),
+     "the mutant suite quotes the solution's bugs and calibrates the grader: instructors' business"),
+    (re.compile(r"\bcalibrat", re.IGNORECASE), "calibrating the thresholds is instructors' business"),
+    (re.compile(r"courses/|--assignment\b|run_autograder|VOXLAB_AUTOGRADER"),
+     "running a course (assignment files, the autograders) is instructors' business"),
 ]
+
+# What a release ships besides the SHIPPED Markdown folders (tools/
+# make_student_release.sh), as paths in the release: a link elsewhere is broken there.
+SHIPPED_PATHS = ("CMakeLists.txt", "README.md", "README_framework.md", "framework", "shaders", "assignments",
+                 "datasets", "docs", "expected", "tests/golden/scenes", "tools/setup.sh", "tools/nrrd_to_dicom.py")
+LINK = re.compile(r"\]\(([^)\s]+)\)")
 
 # The Markdown tools/make_student_release.sh ships (README.md as
 # README_framework.md); keep in step with its copy list.
@@ -121,6 +134,52 @@ def problems_in(text, name):
     return found
 
 
+def link_targets(text):
+    """(line, target) of each relative link of a Markdown text (no web
+    addresses, no anchors within the page), the target without its anchor."""
+    fence = False
+    for k, line in enumerate(text.split("\n"), 1):
+        if FENCE.match(line):
+            fence = not fence
+            continue
+        if fence:
+            continue
+        for m in LINK.finditer(line):
+            target = m.group(1).split("#")[0]
+            if target and not re.match(r"^[a-z][a-z0-9+.-]*:", target):
+                yield k, target
+
+
+def broken_links(text, name, ships):
+    """The links of `text` (the student text of release file `name`) whose
+    target the release does not hold: `ships(path)` says whether it does."""
+    found = []
+    for k, target in link_targets(text):
+        path = os.path.normpath(os.path.join(os.path.dirname(name), target))
+        if path.startswith("..") or not ships(path):
+            found.append(f"{name}:{k}: a link to '{target}', which the student release does not have")
+    return found
+
+
+def source_ships(root):
+    """For a source tree: whether a release path names something a release
+    of it ships (README_framework.md is its README.md; an instructor-only
+    Markdown file is left out)."""
+    def ships(path):
+        if not any(path == p or path.startswith(p + os.sep) for p in SHIPPED_PATHS):
+            return False
+        if path.startswith("expected"):
+            return True  # rendered by the release
+        source = os.path.join(root, "README.md" if path == "README_framework.md" else path)
+        if not os.path.exists(source):
+            return False
+        if source.endswith(".md") and os.path.isfile(source):
+            with open(source, encoding="utf-8") as f:
+                return f.readline().strip() != INSTRUCTOR_FILE
+        return True
+    return ships
+
+
 def headings(text):
     out, fence = [], False
     for line in text.split("\n"):
@@ -178,6 +237,7 @@ def check(root):
             continue
         files += 1
         problems += problems_in(student, name)
+        problems += broken_links(student, name, source_ships(root))
         if re.match(r"assignments/\w+/README\.md$", name):
             lost = [h for h in headings(text) if h not in headings(student)]
             problems += [f"{name}: the student text loses the section '{h}'" for h in lost]
@@ -198,6 +258,10 @@ def release(out):
                 f.write(student)
         files += 1
         problems += problems_in(student, name)
+    # Links, once every file is its student text (instructor-only ones gone).
+    for path, name in markdown_under(out):
+        with open(path, encoding="utf-8") as f:
+            problems += broken_links(f.read(), name, lambda p: os.path.exists(os.path.join(out, p)))
     return problems, files, removed
 
 

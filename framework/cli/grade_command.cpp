@@ -256,7 +256,21 @@ int gradeClass(const fs::path& batch, const fs::path& out, const GraderOptions& 
     const std::vector<json> reports = gradeSubmissions(submissions, options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     writeFileAtomically((out / "gradebook.csv").string(), gradebookCsv(reports));
-    writeClassHtmlReport(classGradebook(reports, submissions, seconds), out.string());
+    // The similarity report first, so that the class page links it.
+    json gradebook = classGradebook(reports, submissions, seconds);
+    std::string similarityLine;
+    if (!similarity) {
+        gradebook["similarity"] = {{"off", true}};
+    } else {
+        try {
+            similarityLine = reportSimilarity(submissions, options, *similarity, out);
+            gradebook["similarity"] = {{"page", "similarity.html"}, {"summary", similarityLine.substr(0, similarityLine.find(" of submissions")) + " listed"}};
+        } catch (const std::exception& e) {
+            gradebook["similarity"] = {{"error", safeText(e.what())}};
+            std::cerr << "voxlab grade: no similarity report: " << terminalLine(e.what()) << "\n";
+        }
+    }
+    writeClassHtmlReport(gradebook, out.string());
     for (const json& r : reports) {
         const std::string status = r.value("status", "") == "error" ? "  not graded: " + r.value("message", "") : "";
         std::printf("%-24s %7.2f / %g%s\n", terminalLine(r.value("name", "?"), 200).c_str(), r.value("score", 0.0),
@@ -264,12 +278,7 @@ int gradeClass(const fs::path& batch, const fs::path& out, const GraderOptions& 
     }
     std::printf("%zu submissions graded in %.1f s; gradebook: %s\n", reports.size(), seconds,
                 terminalLine((out / "gradebook.csv").string()).c_str());
-    if (!similarity) return 0;
-    try {
-        std::cout << terminalLine(reportSimilarity(submissions, options, *similarity, out)) << "\n";
-    } catch (const std::exception& e) {
-        std::cerr << "voxlab grade: no similarity report: " << terminalLine(e.what()) << "\n";
-    }
+    if (!similarityLine.empty()) std::cout << terminalLine(similarityLine) << "\n";
     return 0;
 }
 

@@ -8,7 +8,10 @@
 // that hangs or crashes is the parent's to notice.
 #include <fcntl.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
 
@@ -46,46 +49,79 @@ std::string errorKind(const std::exception& e) {
 // apart: a stage's loop takes about the sampling rule's number (a few times
 // that at most, if it reads a sample twice), a runaway loop hundreds of
 // times more. It is reported as the time-out it would be on a GPU.
-void checkForRunawayLoop(const std::string& name, const Scene& scene, const Volume& volume, RenderEngine& engine,
-                         WorkerResultWriter& out) {
-    try {
-        const double rule = samplesByRule(volume, scene);
-        const double taken = engine.countSamples(scene);
-        const double pixels = double(scene.width) * double(scene.height);
-        if (taken <= 8.0 * rule + 16.0 * pixels) return;
-        char message[400];
-        std::snprintf(message, sizeof message,
-                      "a loop ran away: scene %s took %.3g samples where the sampling rule gives %.3g "
-                      "(llvmpipe ends any loop after 65535 rounds; a GPU would hang): does a loop's "
-                      "counter never reach its bound?",
-                      name.c_str(), taken, rule);
-        out.error("stage", "loop", "runaway", message);
-    } catch (const std::exception&) {
-        // The scene rendered, so counting fails only if the context did; its
-        // image is already sent and a second record for it is not allowed.
+//
+// The count is taken first, before any scene renders, on the first
+// countable scene shrunk to at most kLoopCheckSide pixels a side: its budget
+// is a number of samples per pixel, never a time, so a loaded machine
+// decides the same, and a runaway loop costs 65 535 rounds for a few
+// thousand pixels instead of every grading scene's (which on a busy machine
+// ran into the stage's time limit). Returns the message, or "" for none.
+constexpr int kLoopCheckSide = 48;
+
+std::string runawayLoop(const StageManifest& manifest, std::map<std::string, Volume>& volumes, RenderEngine& engine) {
+    for (const GradedScene& graded : manifest.scenes) {
+        try {
+            Scene scene = gradingSceneFor(graded, volumes, engine);
+            if (!samplesCountable(scene)) continue;
+            const double shrink = std::min(1.0, double(kLoopCheckSide) / std::max(scene.width, scene.height));
+            scene.width = std::max(1, int(std::lround(scene.width * shrink)));
+            scene.height = std::max(1, int(std::lround(scene.height * shrink)));
+            const double rule = samplesByRule(*engine.volume(), scene);
+            const double taken = engine.countSamples(scene);
+            const double pixels = double(scene.width) * double(scene.height);
+            if (taken <= 8.0 * rule + 16.0 * pixels) return "";
+            char message[400];
+            std::snprintf(message, sizeof message,
+                          "a loop ran away: scene %s took %.3g samples at %dx%d where the sampling rule gives %.3g "
+                          "(llvmpipe ends any loop after 65535 rounds; a GPU would hang): does a loop's "
+                          "counter never reach its bound?",
+                          graded.name.c_str(), taken, scene.width, scene.height, rule);
+            return message;
+        } catch (const std::exception&) {
+            // A scene that does not render is that scene's error, said when it is rendered.
+        }
     }
+    return "";
+}
+
+// The stage a C++ function belongs to ("stage/function"): the graded
+// stage's, or another stage's of a self-check's tree (its grading.json).
+std::string cppStub(const std::string& function, const StageManifest& manifest, const std::string& root) {
+    if (std::count(manifest.cppFunctions.begin(), manifest.cppFunctions.end(), function)) return manifest.stage + "/" + function;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(root, ec)) {
+        std::ifstream in(entry.path() / "grading.json");
+        const nlohmann::json m = nlohmann::json::parse(in, nullptr, false);
+        if (m.is_object() && m.contains("cpp_functions") && m["cpp_functions"].is_array())
+            for (const nlohmann::json& f : m["cpp_functions"])
+                if (f.is_string() && f.get<std::string>() == function) return entry.path().filename().string() + "/" + function;
+    }
+    return manifest.stage + "/" + function;
 }
 
 // `volumes` outlives `engine`, which keeps the address of the one it draws.
-// The first scene that rendered and whose samples count is also checked for
-// a runaway loop.
+// Each image goes with the stubs it reached. After a runaway loop no scene
+// is rendered: each says why.
 void renderScenes(const StageManifest& manifest, std::map<std::string, Volume>& volumes, RenderEngine& engine,
-                  WorkerResultWriter& out) {
-    bool loopChecked = false;
+                  const std::string& root, WorkerResultWriter& out) {
+    const std::string runaway = runawayLoop(manifest, volumes, engine);
+    if (!runaway.empty()) out.error("stage", "loop", "runaway", runaway);
     for (const GradedScene& graded : manifest.scenes) {
+        if (!runaway.empty()) {
+            out.error("scene", graded.name, "runaway", "not rendered: a loop ran away (see the stage's message)");
+            continue;
+        }
         try {
             const Scene scene = gradingSceneFor(graded, volumes, engine);
-            out.image(graded.name, engine.render(scene));
-            if (!loopChecked && samplesCountable(scene)) {
-                loopChecked = true;
-                checkForRunawayLoop(graded.name, scene, *engine.volume(), engine, out);
-            }
+            const Image image = engine.render(scene);
+            out.image(graded.name, image, stubsReached(engine, scene, image));
+        } catch (const NotImplemented& e) {
+            out.error("scene", graded.name, errorKind(e), e.what(), {cppStub(e.function(), manifest, root)});
         } catch (const std::exception& e) {
             out.error("scene", graded.name, errorKind(e), e.what());
         }
     }
 }
-
 
 }  // namespace
 
@@ -122,7 +158,7 @@ int gradeWorkerCommand(int argc, char** argv) {
     engine.setCountingByUniform(true);  // the runaway-loop check reuses the render's program
     engine.setCompileOnce(true);  // a scene's program draws once or twice: compiling is most of its time
     engine.setExactFiltering(true);  // verdicts that hold on any conforming GL (voxlab/filtering.glsl)
-    renderScenes(manifest, volumes, engine, out);
+    renderScenes(manifest, volumes, engine, implementation, out);
     for (const GradedCheck& check : manifest.checks) {
         try {
             out.check(check.name, runFunctionCheck(check.name, implementation));

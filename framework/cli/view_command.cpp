@@ -53,6 +53,7 @@ int viewCommand(int argc, char** argv) {
         }
     }
     ViewerOptions options;
+    if (sceneFile) options.scenePath = pos[0];  // a grading scene's expected image is found by its file
     if (auto deckFile = args.get("deck")) {  // checked whole before any window opens
         Deck deck = loadDeck(*deckFile);
         for (std::size_t i = 0; i < deck.slides.size(); ++i)

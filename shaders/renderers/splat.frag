@@ -24,5 +24,5 @@ void main() {
     if (r > u_splat_cutoff * u_splat_sigma || !inside_region(v_centre)) discard;
     vec4 c = transfer_function(v_value);
     float a = splat_opacity(c.a, splat_footprint(r, u_splat_sigma), u_voxel_volume);
-    frag_color = voxlab_not_implemented ? not_implemented_pattern() : vec4(c.rgb * a, a);
+    frag_color = voxlab_not_implemented || u_report_stubs != 0 ? not_implemented_pattern() : vec4(c.rgb * a, a);
 }

@@ -34,5 +34,5 @@ void main() {
     vec3 direction = u_orthographic != 0 ? u_cam_forward : normalize(v_world - u_cam_position);
     vec4 c = transfer_function(stack_value(v_world));
     float a = slice_opacity(c.a, direction);
-    frag_color = voxlab_not_implemented ? not_implemented_pattern() : vec4(c.rgb * a, a);
+    frag_color = voxlab_not_implemented || u_report_stubs != 0 ? not_implemented_pattern() : vec4(c.rgb * a, a);
 }

@@ -26,5 +26,5 @@ void main() {
     vec4 c = transfer_function(sample_volume(v_world));
     if (c.a > 0.0) c.rgb = shade_sample(c.rgb, v_world, ray);
     float a = opacity_correction(c.a, u_step_units / max(dot(ray.direction, u_cam_forward), 1e-6));
-    frag_color = voxlab_not_implemented ? not_implemented_pattern() : vec4(c.rgb * a, a);
+    frag_color = voxlab_not_implemented || u_report_stubs != 0 ? not_implemented_pattern() : vec4(c.rgb * a, a);
 }

@@ -9,9 +9,15 @@
 // With u_count_scale > 0 the images hold sample counts in red (the samples
 // view): each is shown as heat(count * u_count_scale) first. With
 // u_image_aspect > 0 (a student release comparing with an expected image)
-// the images keep that width / height, centred, on dark grey.
+// the images keep that width / height, centred, on dark grey. While a large
+// image is rendered a band of rows at a time (the viewer's viewer_tiles.cpp),
+// the rows below u_new_from (a texture coordinate) are not yet rendered:
+// there the previews, the images shown before, show instead.
 uniform sampler2D u_left;
 uniform sampler2D u_right;
+uniform sampler2D u_left_preview;
+uniform sampler2D u_right_preview;
+uniform float u_new_from;
 uniform vec2 u_viewport_size;  // framebuffer pixels
 uniform float u_divider;       // framebuffer x of the divider
 uniform int u_mode;
@@ -28,8 +34,8 @@ vec3 heat(float t) {
     return mix(c2, c3, 3.0 * t - 2.0);
 }
 
-vec3 image(sampler2D side, vec2 uv) {
-    vec3 c = texture(side, uv).rgb;
+vec3 image(sampler2D side, sampler2D preview, vec2 uv) {
+    vec3 c = uv.y >= u_new_from ? texture(side, uv).rgb : texture(preview, uv).rgb;
     return u_count_scale > 0.0 ? heat(c.r * u_count_scale) : clamp(c, 0.0, 1.0);
 }
 
@@ -44,12 +50,12 @@ void main() {
             return;
         }
     }
-    vec3 left = image(u_left, uv);
+    vec3 left = image(u_left, u_left_preview, uv);
     if (u_mode == 0) {
         frag_color = vec4(left, 1.0);
         return;
     }
-    vec3 right = image(u_right, uv);
+    vec3 right = image(u_right, u_right_preview, uv);
     if (u_mode == 1) {
         frag_color = vec4(gl_FragCoord.x < u_divider ? left : right, 1.0);
         return;

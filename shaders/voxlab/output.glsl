@@ -19,6 +19,7 @@ uniform int u_layer;
 vec4 finish(vec4 premultiplied) {
     // (A bricked render adds each brick's count up by blending.)
     if (u_count_samples != 0) return vec4(float(voxlab_samples_taken), 0.0, 0.0, 1.0);
+    if (u_report_stubs != 0) return stubs_reached_pixel();
     if (voxlab_not_implemented) return not_implemented_pattern();
     if (u_bricked != 0) return brick_result(premultiplied, voxlab_brick_samples);  // voxlab/bricks.glsl
     if (u_layer != 0) return premultiplied;

@@ -19,6 +19,16 @@
 #define GL_TEXTURE_SWIZZLE_RGBA 0x8E46
 #endif
 
+/* Sampler types GLSL ES 3.00 has not; the strict checks' table names them
+ * (gl_strict.cpp). WebGL never reports them, so the values only need to
+ * differ from the others (the desktop GL's). */
+#ifndef GL_SAMPLER_1D
+#define GL_SAMPLER_1D 0x8B5D
+#endif
+#ifndef GL_SAMPLER_BUFFER
+#define GL_SAMPLER_BUFFER 0x8DC2
+#endif
+
 static inline void glClearDepth(double depth) { glClearDepthf((float)depth); }
 
 typedef void (*VoxlabGLProc)(void);

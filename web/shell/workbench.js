@@ -269,7 +269,7 @@ const workbench = {
       const row = table.insertRow();
       row.dataset.scene = s.name;
       row.dataset.status = s.status;
-      row.insertCell().textContent = s.name;
+      row.insertCell().textContent = s.name.replace(/_/g, '_\u200b');  // long names break after an underscore
       const verdict = row.insertCell();
       verdict.innerHTML = `<b class="${s.status}">${s.status}</b><br>`;
       verdict.append(s.message || '');
@@ -286,40 +286,18 @@ const workbench = {
   },
 };
 
-// Enough Markdown for the handouts: headings, paragraphs, lists, code
-// blocks and spans, emphasis, links; tables shown as written.
+// The handouts' Markdown, by markdown-it (web/page: pinned in its lock
+// file, copied into the page at build time as markdown-it.min.js): tables,
+// lists, code and emphasis as GitHub shows them. Raw HTML stays text. A link
+// to another file of the repository has nowhere to go in the page, so it
+// keeps only its text; web addresses and anchors stay links.
+const handoutMarkdown = window.markdownit ? window.markdownit({ html: false, linkify: false, typographer: false }) : null;
+
 function markdown(text) {
-  const esc = (s) => s.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;');
-  const inline = (s) => esc(s)
-    .replace(/`([^`]+)`/g, '<code>$1</code>')
-    .replace(/\*\*([^*]+)\*\*/g, '<b>$1</b>')
-    .replace(/(^|[^*])\*([^*\s][^*]*)\*/g, '$1<i>$2</i>')
-    .replace(/\[([^\]]+)\]\(([^)\s]+)\)/g, (m, t, url) => (/^(https?:|#)/.test(url) ? `<a href="${url}">${t}</a>` : t));
-  const out = [];
-  let list = null, para = [], code = null;
-  const flush = () => {
-    if (para.length) out.push(`<p>${inline(para.join(' '))}</p>`);
-    para = [];
-    if (list) out.push(`</${list}>`);
-    list = null;
-  };
-  for (const line of text.split('\n')) {
-    if (code !== null) {
-      if (/^```/.test(line)) { out.push(`<pre><code>${esc(code.join('\n'))}</code></pre>`); code = null; } else code.push(line);
-      continue;
-    }
-    let m;
-    if (/^```/.test(line)) { flush(); code = []; }
-    else if ((m = line.match(/^(#{1,4})\s+(.*)/))) { flush(); out.push(`<h${m[1].length}>${inline(m[2])}</h${m[1].length}>`); }
-    else if ((m = line.match(/^\s*([-*]|\d+\.)\s+(.*)/))) {
-      const kind = /\d/.test(m[1]) ? 'ol' : 'ul';
-      if (para.length || list !== kind) { flush(); out.push(`<${kind}>`); list = kind; }
-      out.push(`<li>${inline(m[2])}</li>`);
-    } else if (/^\|/.test(line)) { flush(); out.push(`<pre>${esc(line)}</pre>`); }
-    else if (!line.trim()) flush();
-    else if (list && /^\s+/.test(line)) out[out.length - 1] = out[out.length - 1].replace(/<\/li>$/, ` ${inline(line.trim())}</li>`);
-    else para.push(line.trim());
-  }
-  flush();
-  return out.join('\n');
+  if (!handoutMarkdown) return `<pre>${text.replace(/&/g, '&amp;').replace(/</g, '&lt;')}</pre>`;
+  const holder = document.createElement('div');
+  holder.innerHTML = handoutMarkdown.render(text);
+  for (const a of holder.querySelectorAll('a[href]'))
+    if (!/^(https?:|#)/.test(a.getAttribute('href'))) a.replaceWith(...a.childNodes);
+  return holder.innerHTML;
 }

@@ -14,7 +14,11 @@
 //   4. the self-check of the reference passes every scene, and of the
 //      starter's stub fails every scene;
 //   5. a NRRD file dropped on the image is loaded, and 6. so is a bundled
-//      dataset chosen in the page's list.
+//      dataset chosen in the page's list;
+// and that the MIP handout's table is rendered as a table (markdown-it),
+// that "your files" are the pristine starter code, that the self-check's
+// table fits the bench at 1400 px, and that no resource the page asks for
+// is missing (404).
 // With the report.json of the native `voxlab check --stage mip` of the
 // reference and of the stub (tools/setup_web.sh --test makes them), each
 // scene's verdict in the page must be the native one: the same status, and
@@ -95,8 +99,9 @@ const browser = await chromium.launch({
 });
 try {
   const page = await browser.newPage({ viewport: { width: 1400, height: 860 } });
-  const errors = [];
+  const errors = [], missing = [];
   page.on('pageerror', (e) => errors.push(e.message));
+  page.on('response', (r) => { if (r.status() >= 400) missing.push(`${r.status()} ${r.url()}`); });
   if (process.env.VOXLAB_WEB_TEST_VERBOSE) page.on('console', (m) => console.log('console:', m.text().slice(0, 200)));
   const frames = () => page.evaluate(() => Module.voxlabFrames || 0);
   const waitFrames = async (n) => {
@@ -131,6 +136,20 @@ try {
   results.volume_share = shareDifferent(first, corner, 24);
   check(results.volume_share > 0.05, `the canvas shows a volume (${(100 * results.volume_share).toFixed(1)}% of it differs from the background)`);
   await page.screenshot({ path: join(out, '1-page.png') });
+
+  // The handout is Markdown rendered by markdown-it: the MIP handout's table
+  // of the projection stages is a table, not its source text.
+  await page.click('#tabs button[data-tab=handout]');
+  const table = await page.$$eval('#handout table', (ts) => ts.map((t) => [...t.querySelectorAll('th')].map((h) => h.innerText)));
+  const handoutText = await page.innerText('#handout');
+  check(table.some((heads) => heads[0] === 'folder' && heads[1] === 'function') && !handoutText.includes('| folder |'),
+    `the MIP handout's table is a table (${JSON.stringify(table[0] || [])})`);
+  await page.screenshot({ path: join(out, '1-handout.png') });
+  await page.click('#tabs button[data-tab=edit]');
+  // "your files" are the pristine starter code, whatever the tree's assignments/ held at build time.
+  const packed = await page.evaluate(() => Module.FS.readFile('/voxlab/assignments/mip/mip.glsl', { encoding: 'utf8' }));
+  check(packed.includes('not_implemented();') && packed.includes('generated from reference/mip/mip.glsl'),
+    'the page packs the pristine starter code (mip.glsl holds its stub)');
 
   // 2. A syntax error in the student's mip.glsl: the message names the file and line.
   await page.selectOption('#tree', '1');
@@ -174,6 +193,14 @@ try {
       scene: r.dataset.scene, status: r.dataset.status, verdict: r.cells[1].innerText.replace(/\s+/g, ' ') })));
     results[`self_check_${name}`] = { summary: await page.innerText('#check-summary'), scenes: rows };
     check(rows.length > 0 && rows.every((r) => r.status === want), `self-check of the ${name}: every scene ${want} (${rows.length} scenes)`);
+    // Every column of the table within the bench (at 1400 px the FLIP and difference images were cut off).
+    const edges = await page.evaluate(() => {
+      const bench = document.querySelector('#bench').getBoundingClientRect();
+      const cells = [...document.querySelectorAll('#check-table tr[data-scene] td:last-child img')];
+      return { bench: bench.right, cells: cells.map((c) => c.getBoundingClientRect().right) };
+    });
+    check(edges.cells.length > 0 && edges.cells.every((r) => r <= edges.bench + 0.5),
+      `the self-check's difference column fits the bench (${Math.max(...edges.cells).toFixed(0)} <= ${edges.bench.toFixed(0)} px)`);
     const native = { reference: nativeReference, stub: nativeStub }[name];
     if (native) {
       const report = JSON.parse(await readFile(native, 'utf8'));
@@ -213,6 +240,7 @@ try {
   check((await page.evaluate(() => Module.ccall('vx_dataset', 'string', [], []))).endsWith('tooth.nrrd'),
     'a bundled dataset chosen in the list is opened (tooth.nrrd)');
   check(errors.length === 0, `no uncaught page errors${errors.length ? ': ' + errors[0] : ''}`);
+  check(missing.length === 0, `every resource the page asked for was there${missing.length ? ': ' + missing.join(', ') : ''}`);
 } catch (e) {
   failures.push(String(e));
   console.log('FAIL', e.message.split('\n')[0]);

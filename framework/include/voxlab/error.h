@@ -21,7 +21,11 @@ public:
 class NotImplemented : public Error {
 public:
     explicit NotImplemented(const std::string& function)
-        : Error(function + " is not yet implemented (a student stage)") {}
+        : Error(function + " is not yet implemented (a student stage)"), function_(function) {}
+    const std::string& function() const { return function_; }
+
+private:
+    std::string function_;
 };
 
 }  // namespace voxlab

@@ -158,8 +158,12 @@ struct StageManifest {
     std::vector<StageHint> hints;
 };
 
-// The hints whose signature is exactly this set of failed items (sorted).
-std::vector<std::string> hintsFor(const StageManifest& manifest, const std::vector<std::string>& failedSorted);
+// The hints whose signature is exactly this set of failed items (sorted),
+// among the items that ran the stage's own code: a signature that names an
+// item in `blocked` (a scene a stub prerequisite kept from running it) says
+// nothing about this stage and matches nothing.
+std::vector<std::string> hintsFor(const StageManifest& manifest, const std::vector<std::string>& failedSorted,
+                                  const std::vector<std::string>& blocked = {});
 
 // Reads ROOT/<stage>/grading.json. Errors name the file and the key.
 StageManifest loadStageManifest(const std::string& root, const std::string& stage);
@@ -224,10 +228,29 @@ struct Scene;
 // for a scene or dataset that does not load.
 Scene gradingSceneFor(const GradedScene& graded, std::map<std::string, Volume>& volumes, RenderEngine& engine);
 
-// After a render: one line naming the stubs (by stage folder) in the files
-// that render's program came from, the functions the checkerboard stands
-// for, and pointing to `voxlab check`; empty when there are none. The
-// viewer shows it over the image, `voxlab render` prints it.
-std::string missingFunctionsNotice(const RenderEngine& engine);
+// If line `i` of a file calls the starter code's GLSL stub
+// (`not_implemented();` alone on its line), the name of the function whose
+// body it is in; else "". The shader preprocessor numbers each such call
+// (PreprocessedShader::stubs), at most kMaxNumberedStubs per program (a
+// set of them travels as the bits of a float).
+std::string stubCallFunction(const std::vector<std::string>& lines, std::size_t i);
+inline constexpr std::size_t kMaxNumberedStubs = 24;
+
+// Whether an image shows the stubs' magenta-and-black checkerboard.
+struct Image;
+bool showsStubPattern(const Image& image);
+// "gradient/: central_difference_gradient(); shading/: phong()", from
+// "stage/function" names (grouped by stage, in their order).
+std::string stubListText(const std::vector<std::string>& stubs);
+// The stubs a render reached, once it shows the checkerboard: the functions
+// whose stub ran for some pixel (RenderEngine::stubsReached). Empty when the
+// image shows no checkerboard.
+std::vector<std::string> stubsReached(RenderEngine& engine, const Scene& scene, const Image& image, int maxSide = 0);
+
+// One line naming `stubs` (by stage folder), the functions the checkerboard
+// stands for, and pointing to `voxlab check`; empty when there are none. The
+// viewer shows it over the image while the checkerboard is on screen,
+// `voxlab render` prints it.
+std::string missingFunctionsNotice(const std::vector<std::string>& stubs);
 
 }  // namespace voxlab

@@ -30,6 +30,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -89,6 +90,18 @@ public:
     void renderOffscreen(const Scene& scene);
     unsigned offscreenFramebuffer() const { return fbo_; }
     Image readBack() const;
+    // A tile of the image (x, y, width, height in framebuffer pixels, y up):
+    // the next renders shade only these pixels and leave the others as they
+    // were, where the scene allows it (a ray caster drawn in one pass: no
+    // cutting plane, no bricks, not object order); lastRenderTiled() says
+    // whether the last render did. The viewer renders a large image a band
+    // at a time, between frames of its UI. std::nullopt: the whole image.
+    void setTile(std::optional<glm::ivec4> tile) { tile_ = tile; }
+    bool lastRenderTiled() const { return tiled_; }
+    // The width in pixels of the lines renderers draw (texture slicing's and
+    // the mesh's wireframes): the viewer's UI scale. Where the context cannot
+    // draw wide lines (a forward-compatible core context) they stay 1 wide.
+    void setLineWidth(float pixels) { lineWidth_ = pixels; }
 
     // Forgets compiled programs so that the next render re-reads the GLSL.
     // A program that then fails to compile is replaced by its last good
@@ -103,6 +116,17 @@ public:
     // The shader files of the renderer's program in the last render (the
     // viewer names the stubs that render reached).
     const std::vector<std::string>& lastRenderSources() const { return lastRenderSources_; }
+    // The starter code's stubs compiled into the last render's programs,
+    // "stage/function" (ShaderProgram::stubs), whether or not a pixel ran one.
+    const std::vector<std::string>& lastRenderStubs() const { return lastRenderStubs_; }
+    // The stubs whose code ran for some pixel of `scene`: it is drawn again,
+    // into a target of the engine's own (the image stays where it was), with
+    // every pixel writing the set of the program's numbered stubs it reached
+    // (u_report_stubs, voxlab/not_implemented.glsl); with `maxSide`, at most
+    // that many pixels a side. A scene drawn in several passes (object
+    // order, a cutting plane, bricks) cannot say per pixel: for it, every
+    // stub compiled in.
+    std::vector<std::string> stubsReached(const Scene& scene, int maxSide = 0);
     // The colour texture of the offscreen framebuffer (RGBA32F), for
     // compositing two engines' images (the viewer's split view).
     unsigned offscreenTexture() const { return colorTexture_; }
@@ -222,6 +246,9 @@ private:
     unsigned vao_ = 0;
     unsigned fbo_ = 0, colorTexture_ = 0;
     int fboWidth_ = 0, fboHeight_ = 0;
+    std::optional<glm::ivec4> tile_;
+    bool tiled_ = false;
+    float lineWidth_ = 1.0f;
     // Two layers (or a bricked render's state, taking turns) and a bricked
     // render's sample counts.
     unsigned layerFbo_[3] = {0, 0, 0}, layerTexture_[3] = {0, 0, 0};
@@ -231,6 +258,12 @@ private:
     float valueScale_ = 1.0f, valueOffset_ = 0.0f;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_;
     std::vector<std::string> lastRenderSources_;
+    std::vector<std::string> lastRenderStubs_;
+    std::vector<std::string> mainProgramStubs_;  // the numbered stubs of the last single-pass draw's program
+    bool reportingStubs_ = false;
+    int programsNoted_ = 0;
+    unsigned stubFbo_ = 0, stubTexture_ = 0;
+    int stubWidth_ = 0, stubHeight_ = 0;
     std::map<std::string, std::unique_ptr<ShaderProgram>> previousPrograms_;  // before the last reload
     std::string shaderError_;
     TransferFunctionSlot tf_[2];  // the scene's, and the cutting plane's other side

@@ -33,6 +33,11 @@ public:
 struct PreprocessedShader {
     std::string text;
     std::vector<std::string> files;  // index = file id, encoded in #line numbers
+    // The starter code's stubs in the text, "stage/function" (the file's
+    // folder and the function whose body calls not_implemented()): the
+    // stub's call is numbered, `not_implemented_at(K)` for stubs[K], so that
+    // a render can say which stubs its pixels reached (voxlab/not_implemented.glsl).
+    std::vector<std::string> stubs;
 
     // Rewrites "S:L(C): ..." (Mesa) and "S(L) : ..." (NVIDIA) into
     // "file:line:C: ...". Line numbers carry the file: L = id*100000 + line.
@@ -124,6 +129,8 @@ public:
     unsigned id() const { return program_; }
     // Every file that went into the program (for live reload).
     const std::vector<std::string>& sourceFiles() const { return files_; }
+    // The stubs compiled into its fragment shader, by number (PreprocessedShader::stubs).
+    const std::vector<std::string>& stubs() const { return stubs_; }
 
     // Uniform setters; silently ignore uniforms the compiler removed.
     void set(const char* name, int v) const;
@@ -138,6 +145,7 @@ public:
 private:
     unsigned program_ = 0;
     std::vector<std::string> files_;
+    std::vector<std::string> stubs_;
     mutable std::map<std::string, int> locations_;
 };
 

@@ -10,6 +10,8 @@
 namespace voxlab {
 
 struct ViewerOptions {
+    std::string scenePath;           // the scene file `scene` was read from, as given ("" for none):
+                                     // a student release finds a grading scene's expected image by it
     std::string implementationRoot;  // empty: reference/
     std::string studentRoot;         // the implementation switch's "student" side; empty: assignments/
     std::string script;              // a viewer script (viewer_script.h) to run instead of a person

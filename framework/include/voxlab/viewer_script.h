@@ -34,9 +34,16 @@
 //   click X Y                      a left click at window pixel (X, Y)
 //   drag-plane N DX DY             press on clip plane N's handle (1-based; it must be
 //                                  there to grab) and move the mouse by (DX, DY) window pixels
-//   key left|right|up|down|pageup|pagedown|home|end|plus|minus
+//   key left|right|up|down|pageup|pagedown|home|end|plus|minus|p
 //                                  press and release a key, as a person would (a deck's
-//                                  arrows, the UI scale's + and -)
+//                                  arrows, the UI scale's + and -, P's screenshot)
+//   press KEY...                   press and release each key at once, in the same frame,
+//                                  without waiting for the image to be finished (a person
+//                                  typing while a large frame renders); prints what was
+//                                  rendering when the keys came
+//   rendering                      wait, without waiting for the image to be finished, until
+//                                  the viewer renders a large image a band of rows per frame
+//                                  and has more than two bands to go
 //   ui-scale X                     the UI's scale (presentation mode), 0.75 to 4
 //   slide N                        a deck's slide N (1-based; voxlab view --deck)
 //   size WIDTH HEIGHT              window size in pixels

@@ -9,6 +9,10 @@
 //   {"type":"check","name":CHECK,"bytes":N}\n  the check's JSON output
 //   {"type":"error","item":"scene"|"check","name":NAME,"kind":K,"message":M,"bytes":0}\n
 //
+// An image or a scene's error may carry "stubs": the starter code's stubs
+// the scene reached, each "stage/function" (grading.h's stubsReached: the
+// checkerboard showed, or a C++ stage's function threw NotImplemented).
+//
 // kind is "compile_error", "not_implemented" or "error". The grader parses
 // the stream with parseWorkerResults(), which accepts only names of the
 // stage's manifest, each once, with sizes that add up; anything else is a
@@ -18,6 +22,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -30,9 +35,10 @@ namespace voxlab {
 class WorkerResultWriter {
 public:
     explicit WorkerResultWriter(int fd) : fd_(fd) {}
-    void image(const std::string& scene, const Image& image);
+    void image(const std::string& scene, const Image& image, const std::vector<std::string>& stubs = {});
     void check(const std::string& name, const nlohmann::json& result);
-    void error(const std::string& item, const std::string& name, const std::string& kind, const std::string& message);
+    void error(const std::string& item, const std::string& name, const std::string& kind, const std::string& message,
+               const std::vector<std::string>& stubs = {});
 
 private:
     void record(const nlohmann::json& header, const std::string& payload);
@@ -43,6 +49,7 @@ struct WorkerResults {
     std::map<std::string, Image> images;           // scene -> image (as read back from 8 bits)
     std::map<std::string, nlohmann::json> checks;  // check -> its output
     std::map<std::string, nlohmann::json> errors;  // "scene:NAME" / "check:NAME" -> {"kind", "message"}
+    std::map<std::string, std::vector<std::string>> stubs;  // scene -> the stubs it reached ("stage/function")
     std::string problem;                           // why the stream was cut short, if it was
 };
 

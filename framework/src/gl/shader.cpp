@@ -13,6 +13,7 @@
 
 #include "../io/line_scan.h"
 #include "voxlab/gl_context.h"
+#include "voxlab/grading.h"
 #include "voxlab/scene.h"
 #include "voxlab_gl.h"
 
@@ -155,11 +156,18 @@ struct Preprocessor {
         const std::string* generated = lib.generatedText(path);
         std::istringstream in(generated ? *generated : readText(path));
         std::string line;
+        std::vector<std::string> lines;  // this file's, for the function a stub's call is in
         int lineNo = 0;
         if (!isEntry) out.text += lineDirective(fileId, 1);
         while (std::getline(in, line)) {
             ++lineNo;
+            lines.push_back(line);
             std::string name;
+            const std::string stub = stubCallFunction(lines, lines.size() - 1);
+            if (!stub.empty()) {  // numbered: the render can say which stubs it reached
+                out.text += "not_implemented_at(" + std::to_string(stubNumber(path, stub)) + ");\n";
+                continue;
+            }
             if (lineNo == 1 && isEntry) {
                 // `#version` must come first; everything after it is
                 // numbered from line 2 of file 0.
@@ -177,6 +185,16 @@ struct Preprocessor {
             }
         }
         stack.pop_back();
+    }
+
+    // The number of the stub "stage/function" (the file's folder), from 0;
+    // past the last number a float holds exactly as a set of bits, the last.
+    int stubNumber(const std::string& path, const std::string& function) {
+        const std::string name = std::filesystem::path(path).parent_path().filename().string() + "/" + function;
+        const auto at = std::find(out.stubs.begin(), out.stubs.end(), name);
+        if (at != out.stubs.end()) return int(at - out.stubs.begin());
+        if (out.stubs.size() < kMaxNumberedStubs) out.stubs.push_back(name);
+        return int(out.stubs.size()) - 1;
     }
 };
 
@@ -387,6 +405,7 @@ ShaderProgram::ShaderProgram(const ShaderLibrary& library, const std::string& ve
     const PreprocessedShader fs = library.preprocess(fragmentName, constants);
     files_ = vs.files;
     files_.insert(files_.end(), fs.files.begin(), fs.files.end());
+    stubs_ = fs.stubs;
     const GLuint v = compileStage(GL_VERTEX_SHADER, vs);
     GLuint f = 0;
     try {

@@ -324,6 +324,18 @@ std::string summaryTable(const json& report) {
                       html::number(stage, "max_score").value_or(0.0));
         out += pad(terminalLine(html::text(stage, "stage"), 64), 15) + pad(terminalLine(html::text(stage, "status"), 64), 17) +
                pad(score, 13) + terminalLine(html::text(stage, "message")) + "\n";
+        // Each scene that reached the starter code's stubs, and which (a stage
+        // not yet implemented itself reaches its own in every scene: no list).
+        for (const json& scene : html::array(stage, "scenes")) {
+            if (html::text(stage, "status") == "not_implemented") break;
+            std::string reached;  // "gradient/gradient_central(), shading/phong()"
+            for (const json& stub : html::array(scene, "not_implemented_reached"))
+                if (stub.is_string()) reached += (reached.empty() ? "" : ", ") + stub.get<std::string>() + "()";
+            if (reached.empty()) continue;
+            out += pad("", 15) + terminalLine("  " + html::text(scene, "name") + ": " +
+                                              (html::text(scene, "status") == "blocked" ? "blocked, " : "") +
+                                              "reached not yet implemented " + reached) + "\n";
+        }
     }
     out += std::string(100, '-') + "\n";
     char total[96];

@@ -257,11 +257,14 @@ void checkStageFunctions(const StageManifest& m, const std::string& root) {
             throw Error(path + ": functions: '" + f + "' is not defined in the stage's files");
 }
 
-std::vector<std::string> hintsFor(const StageManifest& manifest, const std::vector<std::string>& failedSorted) {
+std::vector<std::string> hintsFor(const StageManifest& manifest, const std::vector<std::string>& failedSorted,
+                                  const std::vector<std::string>& blocked) {
     std::vector<std::string> out;
     if (failedSorted.empty()) return out;
     for (const StageHint& h : manifest.hints)
-        if (h.failed == failedSorted)
+        if (h.failed == failedSorted && std::none_of(h.failed.begin(), h.failed.end(), [&](const std::string& item) {
+                return std::count(blocked.begin(), blocked.end(), item) > 0;
+            }))
             for (const std::string& text : h.hints)
                 if (std::find(out.begin(), out.end(), text) == out.end()) out.push_back(text);
     return out;

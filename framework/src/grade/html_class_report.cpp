@@ -66,6 +66,7 @@ int severity(const std::string& status) {
     if (status == "timeout") return 2;
     if (status == "failed") return 4;
     if (status == "not_implemented") return 5;
+    if (status == "blocked") return 6;  // a prerequisite's stub kept scenes from running (a self-check)
     return 3;  // error, and any status not named here
 }
 
@@ -94,7 +95,7 @@ std::string problemsBlock(const json& submission) {
         if (!p.message.empty()) out += ": <span class=\"why\">" + html::escape(p.message) + "</span>";
         out += "</div>";
     }
-    for (const char* status : {"failed", "not_implemented"})
+    for (const char* status : {"failed", "not_implemented", "blocked"})
         if (grouped.count(status))
             out += "<div class=\"prob p-" + html::token(status) + "\"><b>" + html::statusLabel(status) + "</b>: " +
                    html::escape(grouped[status]) + "</div>";
@@ -228,6 +229,24 @@ std::string gradebookCsv(const std::vector<json>& reports) {
     return csv;
 }
 
+// Under the table: where the similarity report is (voxlab grade --batch
+// writes it beside this page), or why there is none.
+std::string similarityNote(const json& gradebook) {
+    if (!gradebook.is_object() || !gradebook.contains("similarity") || !gradebook["similarity"].is_object()) return "";
+    const json& s = gradebook["similarity"];
+    std::string text;
+    if (s.value("off", false)) {
+        text = "Similar code: not compared (<code>--similarity-threshold off</code>).";
+    } else if (s.contains("error")) {
+        text = "Similar code: no report (" + html::escape(html::text(s, "error")) + ").";
+    } else {
+        const std::string page = html::text(s, "page"), summary = html::text(s, "summary");
+        text = "Similar code across the class, evidence for you to judge: <a href=\"" + html::escape(page) + "\">" +
+               html::escape(page) + "</a>" + (summary.empty() ? "" : " (" + html::escape(summary) + ")") + ".";
+    }
+    return "<p class=\"legend similarity\">" + text + "</p>";
+}
+
 std::string classHtmlReportPage(const json& gradebook) {
     const json& submissions = gradebook.is_array() ? gradebook : html::array(gradebook, "submissions");
     std::vector<StageColumn> columns = stageColumns(submissions);
@@ -272,7 +291,7 @@ std::string classHtmlReportPage(const json& gradebook) {
                     (column.count ? html::formatNumber(column.sum / column.count, 2) : "\u2013") + "</td>";
         body += "</tr></tfoot>";
     }
-    body += "</table><p class=\"legend\">Under each name, what went wrong, worst first: compile errors, crashes, "
+    body += "</table>" + similarityNote(gradebook) + "<p class=\"legend\">Under each name, what went wrong, worst first: compile errors, crashes, "
             "time-outs and errors with their message, then failed and unfinished (not implemented) stages. A cell "
             "names its stage's problem under the score (\u2013: nothing handed in); hover over it for the stage's "
             "message. Stages worth no "

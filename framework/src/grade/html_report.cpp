@@ -276,6 +276,12 @@ std::string sceneBlock(const json& scene, const std::string& reportDir, const Ca
     if (!setup.empty() || !file.empty())
         out += "<p class=\"setup\">" + (file.empty() ? "" : "<code>" + html::escape(file) + "</code> ") +
                html::escape(setup) + "</p>\n";
+    // The starter code's stubs this scene reached (the checkerboard, or a C++ stub).
+    std::string reached;
+    for (const json& stub : html::array(scene, "not_implemented_reached"))
+        if (stub.is_string()) reached += (reached.empty() ? "" : ", ") + stub.get<std::string>() + "()";
+    if (!reached.empty())
+        out += "<p class=\"setup\">Reached functions not yet implemented: <code>" + html::escape(reached) + "</code></p>\n";
     bool messageShown = false;
     const std::string images = figures(scene, reportDir, captions, "cmp-" + id, messageShown);
     if (!message.empty() && !messageShown) out += "<p class=\"message\">" + html::escape(message) + "</p>\n";

@@ -65,7 +65,7 @@ table.summary tbody tr:hover, table.gradebook tbody tr:hover { background: #f6f8
 .st-crashed { background: var(--fail); color: #fff; }
 .st-compile_error { background: var(--orange-bg); color: var(--orange); }
 .st-timeout { background: var(--warn-bg); color: var(--warn); }
-.st-not_implemented { background: var(--idle-bg); color: var(--idle); }
+.st-not_implemented, .st-blocked { background: var(--idle-bg); color: var(--idle); }
 .st-example { background: var(--info-bg); color: var(--info); }
 
 .stage-head { display: flex; align-items: center; gap: 14px; flex-wrap: wrap; }

@@ -113,6 +113,27 @@ std::string sceneFile(const std::string& scenePath, const std::string& root) {
     return file.empty() || *file.begin() == ".." ? fs::path(scenePath).filename().string() : file.string();
 }
 
+// The stubs a scene reached (the worker's "stubs"), and whether they kept
+// it from showing the stage's own code: a stub of another stage (a
+// prerequisite still the starter code, in a self-check of the student's
+// whole tree) blocks the scene, which then counts neither for nor against
+// this stage (scoreStage) and gets no hint.
+void markStubsReached(json& entry, const std::string& stage, const RunOutcome& outcome, const std::string& scene,
+                      double* credit) {
+    const auto reached = outcome.results.stubs.find(scene);
+    if (reached == outcome.results.stubs.end() || reached->second.empty()) return;
+    entry["not_implemented_reached"] = reached->second;
+    std::vector<std::string> others;
+    for (const std::string& stub : reached->second)
+        if (stub.substr(0, stub.find('/')) != stage) others.push_back(stub);
+    if (others.empty()) return;
+    entry["status"] = "blocked";
+    entry["blocked_by"] = others;
+    entry["message"] = safeText("blocked by " + stubListText(others) + ", not yet implemented: this scene cannot show " +
+                                stage + " until they are (it counts neither for nor against " + stage + ")");
+    *credit = 0.0;
+}
+
 // One scene's entry: compared with the expected image when the worker sent
 // one; the images go into the report folder (written here, by the grader).
 json scoreScene(const GradedScene& scene, const StageRun& run, const RunOutcome& outcome, const fs::path& expected,
@@ -153,6 +174,7 @@ json scoreScene(const GradedScene& scene, const StageRun& run, const RunOutcome&
         entry["status"] = "error";
         entry["message"] = safeText(e.what());
     }
+    markStubsReached(entry, run.stage, outcome, scene.name, credit);
     return entry;
 }
 
@@ -190,15 +212,26 @@ json scoreCheck(const GradedCheck& check, const StageRun& run, const RunOutcome&
     return entry;
 }
 
+// The prerequisites' stubs that blocked scenes, each once.
+std::vector<std::string> blockers(const json& scenes) {
+    std::vector<std::string> by;
+    for (const json& e : scenes)
+        for (const json& stub : e.value("blocked_by", json::array()))
+            if (stub.is_string() && !std::count(by.begin(), by.end(), stub.get<std::string>())) by.push_back(stub);
+    return by;
+}
+
 // The stage's status and one-line message.
 std::pair<std::string, std::string> stageStatus(const RunOutcome& outcome, const std::string& compileLog,
                                                 const json& scenes, const json& checks) {
     bool allPassed = true;
     std::string firstError;
     int failed = 0;
+    int blocked = 0;
     for (const json* items : {&scenes, &checks})
         for (const json& e : *items) {
             if (e["status"] == "passed") continue;
+            if (e["status"] == "blocked" && ++blocked) continue;
             allPassed = false;
             ++failed;
             if (e["status"] == "error" && firstError.empty()) firstError = e["message"];
@@ -207,8 +240,8 @@ std::pair<std::string, std::string> stageStatus(const RunOutcome& outcome, const
     if (!compileLog.empty()) return {"compile_error", errorLine(compileLog)};
     if (!outcome.finished && outcome.ended.rfind("timed out", 0) == 0)
         return {"timeout", "the stage " + outcome.ended + " (an endless loop?); scenes finished before it are scored"};
-    for (const auto& [key, error] : outcome.results.errors)  // the worker's runaway-loop check
-        if (error.value("kind", "") == "runaway") return {"timeout", safeText(error.value("message", "a loop ran away"))};
+    if (const auto loop = outcome.results.errors.find("stage:loop"); loop != outcome.results.errors.end())
+        return {"timeout", safeText(loop->second.value("message", "a loop ran away"))};  // the worker's runaway-loop check
     if (!outcome.finished && outcome.ended.rfind("crashed", 0) == 0)
         return {"crashed", "the stage's process " + outcome.ended};
     for (const auto& [key, error] : outcome.results.errors)  // a C++ stage's host
@@ -218,10 +251,53 @@ std::pair<std::string, std::string> stageStatus(const RunOutcome& outcome, const
         for (const std::string& s : outcome.stubs) names += (names.empty() ? "" : ", ") + safeText(s, kMaxNameBytes);
         return {"not_implemented", names + (outcome.stubs.size() == 1 ? " is" : " are") + " not yet implemented"};
     }
+    const std::string blockedNote = blocked == 0 ? "" : "; " + std::to_string(blocked) + " blocked by " +
+                                                            stubListText(blockers(scenes)) + " (not yet implemented): not graded";
+    if (allPassed && blocked > 0)
+        return {"blocked", "every item that ran this stage's code is within its tolerance" + blockedNote};
     if (allPassed) return {"passed", "every scene and check within its tolerance"};
     return {firstError.empty() ? "failed" : "error",
-            std::to_string(failed) + " of " + std::to_string(scenes.size() + checks.size()) +
-                " items outside tolerance" + (firstError.empty() ? "" : "; " + firstError)};
+            std::to_string(failed) + " of " + std::to_string(scenes.size() + checks.size() - blocked) +
+                " items outside tolerance" + blockedNote + (firstError.empty() ? "" : "; " + firstError)};
+}
+
+}  // namespace
+
+namespace {
+
+struct Points {
+    double points = 0.0, score = 0.0;   // the stage's points that were graded, and its score
+    json allPass;                      // the share only a stage with every item passed earns
+    std::vector<std::string> failed, blocked;  // sorted: a mistake's signature, and the blocked items
+};
+
+// Points per item, in proportion to weight, for all but the share that only
+// a stage with every item passed earns (grading.h); sets each item's
+// max_score and score. Blocked scenes are not graded: the part of the stage
+// that ran its own code is graded as the whole stage would be, for its
+// share of the points.
+Points awardPoints(double stagePoints, double weightSum, double blockedWeight, double credit, json& scenes, json& checks) {
+    Points p;
+    const double gradableWeight = weightSum - blockedWeight;
+    p.points = weightSum > 0 ? stagePoints * gradableWeight / weightSum : stagePoints;
+    const double perWeight = pointsPerWeight(p.points, gradableWeight);
+    for (json* items : {&scenes, &checks})
+        for (json& e : *items) {
+            const bool isBlocked = e["status"] == "blocked";
+            e["max_score"] = isBlocked ? 0.0 : perWeight * e["weight"].get<double>();
+            e["score"] = e["max_score"].get<double>() * e["credit"].get<double>();
+            if (isBlocked) p.blocked.push_back(e["name"]);
+            else if (e["status"] != "passed") p.failed.push_back(e["name"]);
+        }
+    std::sort(p.failed.begin(), p.failed.end());
+    const bool allPassed = gradableWeight > 0 && p.failed.empty();
+    const double bonusMax = allPassPoints(p.points, gradableWeight);
+    p.allPass = {{"max_score", bonusMax},
+                 {"score", allPassed ? bonusMax : 0.0},
+                 {"status", allPassed ? "passed" : "failed"},
+                 {"message", allPassed ? "every scene and check passed" : "earned only when every scene and check passes"}};
+    p.score = perWeight * credit + (allPassed ? bonusMax : 0.0);
+    return p;
 }
 
 }  // namespace
@@ -240,7 +316,7 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
         if (error.value("kind", "") == "compile_error" && compileLog.empty())
             compileLog = relativePaths(error.value("message", ""), run);
     const bool ran = outcome.problem.empty();
-    double weightSum = 0.0, credit = 0.0;
+    double weightSum = 0.0, blockedWeight = 0.0, credit = 0.0;
     json scenes = json::array(), checks = json::array();
     for (const GradedScene& scene : manifest.scenes) {
         double c = 0.0;
@@ -248,6 +324,7 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
         if (!ran) entry["message"] = safeText(outcome.problem);
         entry["scene_file"] = sceneFile(scene.scenePath, options.referenceRoot);
         weightSum += scene.weight;
+        if (entry["status"] == "blocked") blockedWeight += scene.weight;
         credit += scene.weight * c;
         entry["credit"] = c;
         scenes.push_back(entry);
@@ -261,27 +338,15 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
         entry["credit"] = c;
         checks.push_back(entry);
     }
-    // Points per item, in proportion to weight, for all but the share that
-    // only a stage with every item passed earns (grading.h).
-    const double perWeight = pointsPerWeight(manifest.points, weightSum);
-    std::vector<std::string> failed;  // the items that did not pass, sorted: a mistake's signature
-    for (json* items : {&scenes, &checks})
-        for (json& e : *items) {
-            e["max_score"] = perWeight * e["weight"].get<double>();
-            e["score"] = e["max_score"].get<double>() * e["credit"].get<double>();
-            if (e["status"] != "passed") failed.push_back(e["name"]);
-        }
-    std::sort(failed.begin(), failed.end());
-    const bool allPassed = weightSum > 0 && failed.empty();
+    const Points p = awardPoints(manifest.points, weightSum, blockedWeight, credit, scenes, checks);
     stage["scenes"] = scenes;
     stage["checks"] = checks;
-    const double bonusMax = allPassPoints(manifest.points, weightSum);
-    stage["all_pass"] = {{"max_score", bonusMax},
-                         {"score", allPassed ? bonusMax : 0.0},
-                         {"status", allPassed ? "passed" : "failed"},
-                         {"message", allPassed ? "every scene and check passed"
-                                               : "earned only when every scene and check passes"}};
-    stage["score"] = perWeight * credit + (allPassed ? bonusMax : 0.0);
+    if (!p.blocked.empty()) {
+        stage["max_score"] = p.points;
+        stage["blocked"] = {{"items", p.blocked}, {"by", blockers(scenes)}, {"points", manifest.points - p.points}};
+    }
+    stage["all_pass"] = p.allPass;
+    stage["score"] = p.score;
     stage["sandbox"] = outcome.sandbox;
     // The worker's last line names the GL it rendered with.
     if (const std::size_t gl = outcome.output.rfind("gl: "); gl != std::string::npos)
@@ -296,7 +361,7 @@ json scoreStage(const StageRun& run, const RunOutcome& outcome, const StageManif
         stage["log"] = relativePaths(outcome.output, run);
     if (manifest.points == 0.0 && status == "passed") status = "example";
     if (status == "failed") {  // a known mistake's signature (grading.h): what it suggests
-        const std::vector<std::string> hints = hintsFor(manifest, failed);
+        const std::vector<std::string> hints = hintsFor(manifest, p.failed, p.blocked);
         if (!hints.empty())
             stage["hints"] = std::vector<std::string>(hints.begin(), hints.begin() + std::min<std::size_t>(3, hints.size()));
     }

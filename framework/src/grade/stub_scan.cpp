@@ -12,6 +12,7 @@
 
 #include "../io/line_scan.h"
 #include "voxlab/grading.h"
+#include "voxlab/image.h"
 #include "voxlab/render_engine.h"
 
 namespace voxlab {
@@ -71,21 +72,40 @@ bool isStubCall(const std::string& line) {
 
 }  // namespace
 
+namespace {
+
+std::vector<std::string> fileLines(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    std::vector<std::string> lines;
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+    return lines;
+}
+
+bool isStageSource(const std::filesystem::path& file) {
+    const std::string ext = file.extension().string();
+    return ext == ".glsl" || ext == ".frag" || ext == ".vert" || ext == ".cpp";
+}
+
+}  // namespace
+
+std::string stubCallFunction(const std::vector<std::string>& lines, std::size_t i) {
+    if (i >= lines.size()) return "";
+    scan::Line l{lines[i]};
+    l.spaces();
+    if (!l.literal("not_implemented")) return "";  // the GLSL form only
+    return isStubCall(lines[i]) ? enclosingFunction(lines, i) : "";
+}
+
 std::vector<std::string> unimplementedFunctions(const std::string& stageFolder) {
     namespace fs = std::filesystem;
     std::vector<fs::path> files;
     std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(stageFolder, ec)) {
-        const std::string ext = entry.path().extension().string();
-        if (entry.is_regular_file() && (ext == ".glsl" || ext == ".frag" || ext == ".vert" || ext == ".cpp"))
-            files.push_back(entry.path());
-    }
+    for (const auto& entry : fs::directory_iterator(stageFolder, ec))
+        if (entry.is_regular_file() && isStageSource(entry.path())) files.push_back(entry.path());
     std::sort(files.begin(), files.end());
     std::vector<std::string> names;
     for (const fs::path& file : files) {
-        std::ifstream in(file);
-        std::vector<std::string> lines;
-        for (std::string l; std::getline(in, l);) lines.push_back(l);
+        const std::vector<std::string> lines = fileLines(file);
         for (std::size_t i = 0; i < lines.size(); ++i) {
             if (!isStubCall(lines[i])) continue;
             const std::string name = enclosingFunction(lines, i);
@@ -95,38 +115,40 @@ std::vector<std::string> unimplementedFunctions(const std::string& stageFolder) 
     return names;
 }
 
-namespace {
-
-// The stage folders (root/<stage>/) of the files under `root`, in order.
-std::vector<std::filesystem::path> stageFolders(const std::vector<std::string>& files,
-                                                const std::filesystem::path& root) {
-    namespace fs = std::filesystem;
-    std::vector<fs::path> folders;
-    for (const std::string& f : files) {
-        const fs::path rel = fs::absolute(f).lexically_normal().lexically_relative(root);
-        if (rel.empty() || *rel.begin() == "..") continue;
-        const fs::path folder = root / *rel.begin();
-        if (fs::is_directory(folder) && std::find(folders.begin(), folders.end(), folder) == folders.end())
-            folders.push_back(folder);
-    }
-    return folders;
+bool showsStubPattern(const Image& image) {
+    // The stub's magenta (1, 0, 1), exact in a float image and in one read
+    // back from 8 bits; a real rendering has it by chance in a pixel or two
+    // at most, the checkerboard in 32 of every 64 pixels it covers.
+    int magenta = 0;
+    for (std::size_t i = 0; i + 3 < image.rgba.size(); i += 4)
+        if (image.rgba[i] > 0.996f && image.rgba[i + 1] < 0.004f && image.rgba[i + 2] > 0.996f && ++magenta >= 8)
+            return true;
+    return false;
 }
 
-}  // namespace
+std::vector<std::string> stubsReached(RenderEngine& engine, const Scene& scene, const Image& image, int maxSide) {
+    if (engine.lastRenderStubs().empty() || !showsStubPattern(image)) return {};
+    return engine.stubsReached(scene, maxSide);
+}
 
-std::string missingFunctionsNotice(const RenderEngine& engine) {
-    const std::filesystem::path root = std::filesystem::absolute(engine.implementationRoot()).lexically_normal();
-    std::string missing;
-    for (const std::filesystem::path& folder : stageFolders(engine.lastRenderSources(), root)) {
-        const std::vector<std::string> names = unimplementedFunctions(folder.string());
-        if (names.empty()) continue;
-        std::string list;
-        for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n + "()";
-        missing += (missing.empty() ? "" : "; ") + folder.filename().string() + "/: " + list;
+std::string stubListText(const std::vector<std::string>& stubs) {
+    std::vector<std::string> stages;  // in the order they first appear
+    for (const std::string& s : stubs)
+        if (!std::count(stages.begin(), stages.end(), s.substr(0, s.find('/')))) stages.push_back(s.substr(0, s.find('/')));
+    std::string text;
+    for (const std::string& stage : stages) {
+        std::string functions;
+        for (const std::string& s : stubs)
+            if (s.substr(0, s.find('/')) == stage) functions += (functions.empty() ? "" : ", ") + s.substr(s.find('/') + 1) + "()";
+        text += (text.empty() ? "" : "; ") + stage + "/: " + functions;
     }
-    return missing.empty() ? ""
-                           : "not yet implemented: " + missing +
-                                 " (the magenta checkerboard marks where a ray reaches one). Run `voxlab check` for every stage.";
+    return text;
+}
+
+std::string missingFunctionsNotice(const std::vector<std::string>& stubs) {
+    if (stubs.empty()) return "";
+    return "not yet implemented: " + stubListText(stubs) +
+           " (the magenta checkerboard marks where a ray reaches one). Run `voxlab check` for every stage.";
 }
 
 }  // namespace voxlab

@@ -20,6 +20,7 @@ namespace {
 constexpr int kMaxSide = 8192;             // pixels; grading scenes are a few hundred
 constexpr std::size_t kMaxHeader = 65536;  // bytes of one header line
 constexpr std::size_t kMaxCheck = 16u << 20;
+constexpr std::size_t kMaxStubs = 64;      // stubs a scene may name
 
 bool inManifest(const StageManifest& m, const std::string& item, const std::string& name) {
     if (item == "stage") return name == "loop";  // the worker's runaway-loop check (an error record only)
@@ -50,6 +51,11 @@ std::size_t parseRecord(const std::string& stream, std::size_t at, const StageMa
     if ((type != "image" && type != "check" && type != "error") || !inManifest(m, item, name))
         throw Error("unexpected record " + type + " '" + name + "'");
     const std::string key = item + ":" + name;
+    if (h.contains("stubs") && item == "scene") {
+        const json& stubs = h.at("stubs");
+        if (!stubs.is_array() || stubs.size() > kMaxStubs) throw Error("record '" + name + "': stubs is not a short list");
+        for (const json& stub : stubs) r.stubs[name].push_back(safeText(stub.get<std::string>(), kMaxNameBytes));
+    }
     if (r.errors.count(key) || (item == "scene" ? r.images.count(name) : r.checks.count(name)))
         throw Error("record " + key + " sent twice");
     if (type == "image") {
@@ -93,13 +99,14 @@ void WorkerResultWriter::record(const json& header, const std::string& payload) 
         throw Error(std::string("cannot send results to the grader (fd 3): ") + std::strerror(err));
 }
 
-void WorkerResultWriter::image(const std::string& scene, const Image& image) {
+void WorkerResultWriter::image(const std::string& scene, const Image& image, const std::vector<std::string>& stubs) {
     std::string rgb(std::size_t(image.width) * image.height * 3, '\0');
     for (std::size_t i = 0, n = std::size_t(image.width) * image.height; i < n; ++i)
         for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = char(toByte(image.rgba[i * 4 + c]));
-    record({{"type", "image"}, {"name", scene}, {"width", image.width}, {"height", image.height},
-            {"bytes", rgb.size()}},
-           rgb);
+    json header = {{"type", "image"}, {"name", scene}, {"width", image.width}, {"height", image.height},
+                   {"bytes", rgb.size()}};
+    if (!stubs.empty()) header["stubs"] = stubs;
+    record(header, rgb);
 }
 
 void WorkerResultWriter::check(const std::string& name, const json& result) {
@@ -108,9 +115,10 @@ void WorkerResultWriter::check(const std::string& name, const json& result) {
 }
 
 void WorkerResultWriter::error(const std::string& item, const std::string& name, const std::string& kind,
-                               const std::string& message) {
-    record({{"type", "error"}, {"item", item}, {"name", name}, {"kind", kind}, {"message", message}, {"bytes", 0}},
-           "");
+                               const std::string& message, const std::vector<std::string>& stubs) {
+    json header = {{"type", "error"}, {"item", item}, {"name", name}, {"kind", kind}, {"message", message}, {"bytes", 0}};
+    if (!stubs.empty()) header["stubs"] = stubs;
+    record(header, "");
 }
 
 }  // namespace voxlab

@@ -1,6 +1,8 @@
 // voxlab: the render engine's side of DrawContext (engine_draw_context.h).
 #include "engine_draw_context.h"
 
+#include <algorithm>
+
 #include "voxlab/error.h"
 #include "voxlab_gl.h"
 
@@ -64,7 +66,23 @@ void EngineDrawContext::drawFacets(const std::vector<glm::vec3>& vertices) {
     drawArrays(GL_TRIANGLES, vertices, &normals);
 }
 
-void EngineDrawContext::drawLines(const std::vector<glm::vec3>& vertices) { drawArrays(GL_LINES, vertices); }
+void EngineDrawContext::drawLines(const std::vector<glm::vec3>& vertices) {
+    // Wide lines: not in a forward-compatible core context (GL 3.3 core
+    // E.2.2), and only as wide as the implementation's range.
+    GLint flags = 0;
+#ifdef GL_CONTEXT_FLAG_FORWARD_COMPATIBLE_BIT  // (not in WebGL 2, whose range says what it draws)
+    glGetIntegerv(GL_CONTEXT_FLAGS, &flags);
+    const bool forwardCompatible = (flags & GL_CONTEXT_FLAG_FORWARD_COMPATIBLE_BIT) != 0;
+#else
+    const bool forwardCompatible = false;
+#endif
+    GLfloat range[2] = {1.0f, 1.0f};
+    glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, range);
+    const bool wide = engine_.lineWidth_ > 1.0f && !forwardCompatible && range[1] > 1.0f;
+    if (wide) glLineWidth(std::min(engine_.lineWidth_, range[1]));
+    drawArrays(GL_LINES, vertices);
+    if (wide) glLineWidth(1.0f);
+}
 
 void EngineDrawContext::drawInstancedSquares(const std::vector<glm::vec4>& instances) {
     if (instances.empty()) return;

@@ -6,6 +6,7 @@
 
 #include "voxlab/bspline.h"
 #include "voxlab/error.h"
+#include "voxlab/grading.h"
 #include "voxlab/scene_volumes.h"
 #include "engine_draw_context.h"
 #include "engine_internal.h"
@@ -143,6 +144,7 @@ RenderEngine::~RenderEngine() {
     glDeleteTextures(1, &bsplineTexture_);
     for (TransferFunctionSlot& slot : tf_) glDeleteTextures(1, &slot.texture);
     deleteFloatTarget(fbo_, colorTexture_);
+    if (stubFbo_) deleteFloatTarget(stubFbo_, stubTexture_);
     for (int i = 0; i < 3; ++i) deleteFloatTarget(layerFbo_[i], layerTexture_[i]);
     for (int i = 0; i < 2; ++i) deleteFloatTarget(intermediateFbo_[i], intermediateTexture_[i]);
     for (unsigned& t : sliceStacks_)
@@ -262,6 +264,10 @@ std::vector<std::string> RenderEngine::shaderSources() const {
 }
 
 void RenderEngine::noteSources(const ShaderProgram& prog) {
+    ++programsNoted_;
+    for (const std::string& stub : prog.stubs())
+        if (std::find(lastRenderStubs_.begin(), lastRenderStubs_.end(), stub) == lastRenderStubs_.end())
+            lastRenderStubs_.push_back(stub);
     for (const std::string& shown : prog.sourceFiles()) {
         const std::string f = filePath(shown);
         if (std::find(lastRenderSources_.begin(), lastRenderSources_.end(), f) == lastRenderSources_.end())
@@ -438,6 +444,9 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     ShaderConstants constants = switchesFor(scene, pass, inputs, skipping, combine);
     const ShaderProgram& prog = program(renderer.vertexShader(), renderer.fragmentShader(), constants);
     lastRenderSources_.clear();
+    lastRenderStubs_.clear();
+    mainProgramStubs_.clear();
+    programsNoted_ = 0;
     noteSources(prog);
 
     if (combine == BrickCombine::None) bindVolumeBrick(0, prog, scene);
@@ -468,6 +477,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
         sceneVolumes_->bind(p, scene, *volume_);
         if (skipping) bindBricks(p, renderer.emptySpaceRule(pass.values), table, inputs.widgets);
         p.set("u_count_samples", countingSamples_ ? 1 : 0);  // ignored where switchesFor baked it
+        p.set("u_report_stubs", reportingStubs_ ? 1 : 0);
     };
     prepare(prog);
 
@@ -477,7 +487,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
         // cutting-plane layer, over nothing) in premultiplied alpha.
         const Camera cam = Camera::make(scene.camera, volume_->extent(), scene.width, scene.height);
         prog.set("u_clip_from_world", cam.clipFromWorld());
-        const glm::vec4 under = pass.layer ? glm::vec4(0.0f) : glm::vec4(scene.background, 1.0f);
+        const glm::vec4 under = pass.layer || reportingStubs_ ? glm::vec4(0.0f) : glm::vec4(scene.background, 1.0f);
         glClearColor(under.r, under.g, under.b, under.a);
         glClear(GL_COLOR_BUFFER_BIT);
         glEnable(GL_BLEND);
@@ -486,13 +496,23 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
         renderer.draw(context, pass.values);
         glDisable(GL_BLEND);
         glDisable(GL_DEPTH_TEST);
+        // Drawn with its one program (not shear-warp's passes), whose opaque
+        // stub pixels land as they are: they can say which stubs ran.
+        if (programsNoted_ == 1 && !pass.layer) mainProgramStubs_ = prog.stubs();
     } else if (combine != BrickCombine::None) {
         constants["u_skipping"] = skipping ? 1 : 0;
         drawBricked(scene, pass, inputs, prog, constants, combine, prepare);
     } else {
         glDisable(GL_BLEND);
         glBindVertexArray(vao_);
+        if (tile_ && !pass.layer) {  // only these pixels: the others keep what they had
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(tile_->x, tile_->y, tile_->z, tile_->w);
+            tiled_ = true;
+        }
         glDrawArrays(GL_TRIANGLES, 0, 3);
+        glDisable(GL_SCISSOR_TEST);
+        if (!pass.layer) mainProgramStubs_ = prog.stubs();  // one pass: its pixels can say which stubs ran
     }
     checkGlDraw(("drawing with renderer '" + renderer.id() + "'").c_str());
 }
@@ -579,6 +599,7 @@ void RenderEngine::drawCut(const Scene& scene, unsigned framebuffer) {
 
 void RenderEngine::renderTo(const Scene& scene, unsigned framebuffer) {
     if (!volume_) throw Error("render: no volume has been set");
+    tiled_ = false;
     if (scene.cuttingPlane) {
         drawCut(scene, framebuffer);
         return;
@@ -623,6 +644,43 @@ double RenderEngine::countSamples(const Scene& scene) {
     double total = 0.0;
     for (std::size_t i = 0; i < counts.rgba.size(); i += 4) total += counts.rgba[i];
     return total;
+}
+
+std::vector<std::string> RenderEngine::stubsReached(const Scene& given, int maxSide) {
+    if (lastRenderStubs_.empty()) return {};
+    Scene scene = given;
+    if (maxSide > 0 && std::max(scene.width, scene.height) > maxSide) {
+        const double shrink = double(maxSide) / std::max(scene.width, scene.height);
+        scene.width = std::max(1, int(scene.width * shrink)), scene.height = std::max(1, int(scene.height * shrink));
+    }
+    if (!stubFbo_ || stubWidth_ != scene.width || stubHeight_ != scene.height) {
+        createFloatTarget(&stubFbo_, &stubTexture_, scene.width, scene.height);
+        stubWidth_ = scene.width, stubHeight_ = scene.height;
+    }
+    const std::vector<std::string> compiled = lastRenderStubs_;
+    reportingStubs_ = true;
+    try {
+        renderTo(scene, stubFbo_);
+    } catch (...) {
+        reportingStubs_ = false;
+        throw;
+    }
+    reportingStubs_ = false;
+    const std::vector<std::string> numbered = mainProgramStubs_;
+    if (numbered.empty()) return compiled;  // several passes: their pixels do not say
+    std::vector<float> pixels(std::size_t(scene.width) * scene.height * 4);
+    glBindFramebuffer(GL_FRAMEBUFFER, stubFbo_);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, scene.width, scene.height, GL_RGBA, GL_FLOAT, pixels.data());
+    checkGlError("reading back the stubs reached");
+    unsigned long bits = 0;
+    for (std::size_t i = 0; i < pixels.size(); i += 4)
+        if (pixels[i] >= 1.0f && pixels[i] < float(1 << kMaxNumberedStubs)) bits |= (unsigned long)(pixels[i]);
+    std::vector<std::string> reached;
+    for (std::size_t k = 0; k < numbered.size(); ++k)
+        if (bits & (1ul << k)) reached.push_back(numbered[k]);
+    return reached;
 }
 
 Image RenderEngine::readBack() const {

@@ -96,9 +96,16 @@ public:
         if (c == "implementation") return exactly(1, "expected a folder or 'reference'");
         if (c == "screenshot") return exactly(1, "expected 1 output path");
         if (c == "tf" || c == "tf2d") return exactly(1, "expected 1 path or 'none'");
+        if (c == "press") {
+            if (step_.args.empty()) fail("expected one or more keys");
+            for (int i = 0; i < int(step_.args.size()); ++i)
+                if (!isOneOf(arg(i), {"left", "right", "up", "down", "pageup", "pagedown", "home", "end", "plus", "minus", "p"}))
+                    fail("expected keys: left, right, up, down, pageup, pagedown, home, end, plus, minus or p", i);
+            return;
+        }
         if (c == "key")
-            return oneWord("expected a key: left, right, up, down, pageup, pagedown, home, end, plus or minus",
-                           {"left", "right", "up", "down", "pageup", "pagedown", "home", "end", "plus", "minus"});
+            return oneWord("expected a key: left, right, up, down, pageup, pagedown, home, end, plus, minus or p",
+                           {"left", "right", "up", "down", "pageup", "pagedown", "home", "end", "plus", "minus", "p"});
         if (c == "ui-scale") {
             const char* msg = "expected 1 number in [0.75, 4]";
             exactly(1, msg);
@@ -114,7 +121,7 @@ public:
             if (integerAt(0, msg) < 1) fail(msg, 0);
             return;
         }
-        if (c == "quit") return exactly(0, "expected no arguments");
+        if (c == "quit" || c == "rendering") return exactly(0, "expected no arguments");
         if (c == "right") return exactly(1, "expected a renderer name or 'same'");
         if (c == "divider") {
             const char* msg = "expected 1 number in (0, 1): the divider's place across the window";
@@ -250,7 +257,7 @@ private:
 
 constexpr const char* kCommands[] = {
     "load", "scene", "renderer", "param", "step", "interpolation", "tf", "tf2d", "camera", "rotate",
-    "key", "ui-scale", "slide", "enlarge", "window", "samples", "skipping", "lod", "split", "divider", "right", "drag", "drag-plane", "implementation", "panel", "click", "size", "wait", "screenshot", "quit"};
+    "key", "press", "rendering", "ui-scale", "slide", "enlarge", "window", "samples", "skipping", "lod", "split", "divider", "right", "drag", "drag-plane", "implementation", "panel", "click", "size", "wait", "screenshot", "quit"};
 
 }  // namespace
 

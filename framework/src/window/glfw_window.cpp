@@ -26,7 +26,12 @@ GlfwWindow::GlfwWindow(int width, int height, const std::string& title, bool vis
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);  // required on macOS
+#ifdef __APPLE__
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);  // required on macOS (lines stay 1 pixel wide there)
+#else
+    // Not forward-compatible elsewhere: wide lines (the wireframes at the UI's scale) stay allowed.
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_FALSE);
+#endif
     glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
 #ifdef GLFW_SCALE_TO_MONITOR                                // (GLFW 3.3; not emscripten's)
     glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);       // high-DPI screens

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "viewer_script_runner.h"
 #include "viewer_state.h"
@@ -30,6 +31,15 @@ constexpr const char* kImGuiGlslVersion = "#version 330 core";
 #endif
 
 State* g_state = nullptr;  // for GLFW's drop callback, which has no user pointer of ours
+
+}  // namespace
+
+void keyEvent(GLFWwindow* window, int key, int scancode, int action, int mods) {
+    ImGui_ImplGlfw_KeyCallback(window, key, scancode, action, mods);
+    if (action == GLFW_PRESS && g_state) g_state->keyPresses.emplace_back(key, mods);
+}
+
+namespace {
 
 void onDrop(GLFWwindow*, int count, const char** paths) {
     if (!g_state) return;
@@ -105,59 +115,75 @@ void handleMouse(GLFWwindow* window, State& s) {
     }
 }
 
-void handleKeys(State& s) {
+// I: the left side's implementation, student or reference.
+void switchImplementation(State& s) {
+    if (!s.hasReference) {
+        s.say("a student release has no reference: split view (S) compares a grading scene with its expected image", 3.0);
+        return;
+    }
+    try {
+        setImplementation(s.main, s.main.implementation.empty() ? s.studentRoot : "", *s.volume);
+        s.say(std::string("left side: ") + (s.main.implementation.empty() ? "reference" : "student"), 2.0);
+    } catch (const Error& e) {
+        s.say(e.what());
+    }
+    s.dirty = true;
+}
+
+// One key press (GLFW's key code and modifiers).
+void handleKey(State& s, int key, int mods) {
     const ImGuiIO& io = ImGui::GetIO();
-    if (io.WantCaptureKeyboard) return;
-    // ImGui 1.86 (Debian 12): keys are the GLFW backend's key codes.
-    auto pressed = [](int glfwKey) { return ImGui::IsKeyPressed(glfwKey, false); };
     const auto& all = rendererRegistry().all();
-    for (int k = 0; k < 9 && k < int(all.size()); ++k)
-        if (pressed(GLFW_KEY_1 + k))
-            s.scene.renderer = all[k]->id(), s.scene.parameters.clear(), s.dirty = true;
-    if (pressed(GLFW_KEY_R)) reloadShaders(s);
-    if (pressed(GLFW_KEY_S)) s.split = SplitMode((int(s.split) + 1) % 3), s.dirty = true;
-    if (pressed(GLFW_KEY_I) && !s.hasReference) s.say("a student release has no reference: split view (S) compares "
-                                                      "a grading scene with its expected image", 3.0);
-    else if (pressed(GLFW_KEY_I)) {
-        try {
-            setImplementation(s.main, s.main.implementation.empty() ? s.studentRoot : "", *s.volume);
-            s.say(std::string("left side: ") + (s.main.implementation.empty() ? "reference" : "student"), 2.0);
-        } catch (const Error& e) {
-            s.say(e.what());
-        }
-        s.dirty = true;
+    if (key >= GLFW_KEY_1 && key < GLFW_KEY_1 + std::min(9, int(all.size())))
+        s.scene.renderer = all[std::size_t(key - GLFW_KEY_1)]->id(), s.scene.parameters.clear(), s.dirty = true;
+    const bool shift = (mods & GLFW_MOD_SHIFT) != 0, ctrl = (mods & GLFW_MOD_CONTROL) != 0;
+    switch (key) {
+        case GLFW_KEY_R: reloadShaders(s); break;
+        case GLFW_KEY_S: s.split = SplitMode((int(s.split) + 1) % 3), s.dirty = true; break;
+        case GLFW_KEY_I: switchImplementation(s); break;
+        case GLFW_KEY_X: setAxisView(&s.scene.camera, shift ? "-x" : "+x"), s.dirty = true; break;
+        case GLFW_KEY_Y: if (!ctrl) setAxisView(&s.scene.camera, shift ? "-y" : "+y"), s.dirty = true; break;
+        case GLFW_KEY_Z: if (!ctrl) setAxisView(&s.scene.camera, shift ? "-z" : "+z"), s.dirty = true; break;
+        case GLFW_KEY_O:
+            s.scene.camera.projection = s.scene.camera.projection == Projection::Orthographic ? Projection::Perspective
+                                                                                              : Projection::Orthographic;
+            s.dirty = true;
+            break;
+        case GLFW_KEY_SPACE: resetCamera(&s.scene.camera), s.dirty = true; break;
+        case GLFW_KEY_H: case GLFW_KEY_F1: s.showHelp = !s.showHelp; break;
+        case GLFW_KEY_T: s.showTransferFunction = !s.showTransferFunction; break;
+        case GLFW_KEY_L: s.showSlices = !s.showSlices; break;
+        case GLFW_KEY_F: s.showProfile = !s.showProfile; break;
+        case GLFW_KEY_TAB: s.showPanel = !s.showPanel; break;
+        case GLFW_KEY_P: s.screenshotRequest = timestampedScreenshotName(), s.screenshotByKey = true; break;
+        case GLFW_KEY_ESCAPE: s.showHelp = false; break;
+        // Presentation mode: + and - (also on the keypad) scale the whole UI.
+        case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: s.requestedUiScale = std::max(s.requestedUiScale, s.uiScale) + 0.25f; break;
+        case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT:
+            s.requestedUiScale = (s.requestedUiScale > 0.0f ? s.requestedUiScale : s.uiScale) - 0.25f;
+            break;
+        default: break;
     }
-    const bool minus = io.KeyShift;
-    if (pressed(GLFW_KEY_X)) setAxisView(&s.scene.camera, minus ? "-x" : "+x"), s.dirty = true;
-    if (pressed(GLFW_KEY_Y) && !io.KeyCtrl) setAxisView(&s.scene.camera, minus ? "-y" : "+y"), s.dirty = true;
-    if (pressed(GLFW_KEY_Z) && !io.KeyCtrl) setAxisView(&s.scene.camera, minus ? "-z" : "+z"), s.dirty = true;
-    if (pressed(GLFW_KEY_O)) {
-        s.scene.camera.projection = s.scene.camera.projection == Projection::Orthographic ? Projection::Perspective
-                                                                                          : Projection::Orthographic;
-        s.dirty = true;
-    }
-    if (pressed(GLFW_KEY_SPACE)) resetCamera(&s.scene.camera), s.dirty = true;
-    if (pressed(GLFW_KEY_H) || pressed(GLFW_KEY_F1)) s.showHelp = !s.showHelp;
-    if (pressed(GLFW_KEY_T)) s.showTransferFunction = !s.showTransferFunction;
-    if (pressed(GLFW_KEY_L)) s.showSlices = !s.showSlices;
-    if (pressed(GLFW_KEY_F)) s.showProfile = !s.showProfile;
-    if (pressed(GLFW_KEY_TAB)) s.showPanel = !s.showPanel;
-    if (pressed(GLFW_KEY_P)) s.screenshotRequest = timestampedScreenshotName();
-    if (pressed(GLFW_KEY_ESCAPE)) s.showHelp = false;
-    // Presentation mode: + and - (also on the keypad) scale the whole UI.
-    if (pressed(GLFW_KEY_EQUAL) || pressed(GLFW_KEY_KP_ADD)) s.requestedUiScale = s.uiScale + 0.25f;
-    if (pressed(GLFW_KEY_MINUS) || pressed(GLFW_KEY_KP_SUBTRACT)) s.requestedUiScale = s.uiScale - 0.25f;
     // A deck: the arrows (and a presenter's clicker, which sends Page Up/Down).
     // (Not while the mouse is over a panel: the slice views take the arrows there.)
     if (s.deck && !io.WantCaptureMouse) {
         const int last = int(s.deck->slides.size()) - 1;
         int to = s.slide;
-        if (pressed(GLFW_KEY_RIGHT) || pressed(GLFW_KEY_DOWN) || pressed(GLFW_KEY_PAGE_DOWN)) to = std::min(last, to + 1);
-        if (pressed(GLFW_KEY_LEFT) || pressed(GLFW_KEY_UP) || pressed(GLFW_KEY_PAGE_UP)) to = std::max(0, to - 1);
-        if (pressed(GLFW_KEY_HOME)) to = 0;
-        if (pressed(GLFW_KEY_END)) to = last;
+        if (key == GLFW_KEY_RIGHT || key == GLFW_KEY_DOWN || key == GLFW_KEY_PAGE_DOWN) to = std::min(last, to + 1);
+        if (key == GLFW_KEY_LEFT || key == GLFW_KEY_UP || key == GLFW_KEY_PAGE_UP) to = std::max(0, to - 1);
+        if (key == GLFW_KEY_HOME) to = 0;
+        if (key == GLFW_KEY_END) to = last;
         if (to != s.slide) showSlide(s, to);
     }
+}
+
+// Every key pressed since the last frame, in order, each once: also those
+// released again before this frame began (a long frame, a slide's load).
+void handleKeys(State& s) {
+    std::vector<std::pair<int, int>> presses;
+    presses.swap(s.keyPresses);
+    if (ImGui::GetIO().WantCaptureKeyboard) return;  // typed into a field
+    for (const auto& [key, mods] : presses) handleKey(s, key, mods);
 }
 
 void loadDropped(State& s) {
@@ -195,8 +221,19 @@ bool saveRequestedScreenshot(State& s, bool script) {
     s.screenshotRequest.clear();
     try {
         saveWindowScreenshot(s.fbWidth, s.fbHeight, path);
-        if (script) std::printf("%s\n", path.c_str()), std::fflush(stdout);  // no toast next
-        else s.say("saved " + path, 3.0);
+        const bool byKey = s.screenshotByKey;
+        s.screenshotByKey = false;
+        if (script && !byKey) {  // a script's output; nothing over the window (its next screenshot)
+            std::printf("%s\n", path.c_str()), std::fflush(stdout);
+            return true;
+        }
+        // P: where it went, absolute, in a message and for a while on the status line.
+        std::error_code ec;
+        const std::filesystem::path where = std::filesystem::absolute(path, ec);
+        s.lastScreenshot = ec ? path : where.lexically_normal().string();
+        s.lastScreenshotUntil = Clock::now() + std::chrono::seconds(20);
+        s.say("screenshot saved: " + std::filesystem::path(path).filename().string() + " (the full path: bottom right)", 6.0);
+        if (script) std::printf("screenshot saved: %s\n", s.lastScreenshot.c_str()), std::fflush(stdout);
     } catch (const Error& e) {
         if (script) return std::fprintf(stderr, "voxlab: %s\n", e.what()), false;
         s.say(e.what(), 6.0);
@@ -261,6 +298,7 @@ ViewerSession* startViewer(const Scene& initial, const ViewerOptions& options) {
     State& s = session->s;
     GlfwWindow& window = session->window;
     s.scene = initial;
+    s.scenePath = options.scenePath;
     s.studentRoot = options.studentRoot.empty() ? projectRoot() + "/assignments" : options.studentRoot;
     s.hasReference = defaultImplementationRoot() == projectRoot() + "/reference";
     s.deck = options.deck;
@@ -283,6 +321,7 @@ ViewerSession* startViewer(const Scene& initial, const ViewerOptions& options) {
     }
     g_state = &s;
     glfwSetDropCallback(window.handle(), onDrop);
+    glfwSetKeyCallback(window.handle(), keyEvent);  // ImGui's, with every press kept for handleKeys
     glfwSwapInterval(options.script.empty() ? 1 : 0);
     if (!options.script.empty()) session->script = std::make_unique<ScriptRunner>(options.script);
     return session.release();

@@ -7,6 +7,9 @@
 // instead of showing the student's own code as "reference".
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
 
 #include "voxlab/error.h"
 #include "voxlab_gl.h"
@@ -22,13 +25,34 @@ bool comparesWithExpected(const State& s) { return s.split != SplitMode::Off && 
 
 namespace {
 
-// The expected image of a scene file assignments/<stage>/scenes/<name>.json.
+// The name a stage's manifest gives the scene file `scene` (a grading
+// scene's expected image is expected/<stage>/<name>.png), or its stem when
+// the manifest does not list it.
+std::string gradingSceneName(const fs::path& stageFolder, const fs::path& scene) {
+    std::ifstream in(stageFolder / "grading.json");
+    const nlohmann::json manifest = nlohmann::json::parse(in, nullptr, false);
+    if (manifest.is_object() && manifest.contains("scenes") && manifest["scenes"].is_array())
+        for (const nlohmann::json& entry : manifest["scenes"]) {
+            if (!entry.is_object() || !entry.contains("scene") || !entry["scene"].is_string()) continue;
+            const fs::path listed = (stageFolder / entry["scene"].get<std::string>()).lexically_normal();
+            if (listed == scene && entry.contains("name") && entry["name"].is_string())
+                return entry["name"].get<std::string>();
+        }
+    return scene.stem().string();
+}
+
+// The expected image of a scene file <stage>/scenes/<name>.json
+// (assignments/ of the release, or a copy of a stage folder elsewhere),
+// however the path was given: relative to the working folder or absolute.
 std::string expectedImageFor(const std::string& scenePath) {
     if (scenePath.empty()) return "";
-    const fs::path scene = fs::absolute(scenePath).lexically_normal();
+    std::error_code ec;
+    fs::path scene = fs::weakly_canonical(fs::absolute(scenePath), ec);
+    if (ec) scene = fs::absolute(scenePath).lexically_normal();
     if (scene.parent_path().filename() != "scenes") return "";
-    const std::string stage = scene.parent_path().parent_path().filename().string();
-    const fs::path png = fs::path(projectRoot()) / "expected" / stage / (scene.stem().string() + ".png");
+    const fs::path stageFolder = scene.parent_path().parent_path();
+    const std::string stage = stageFolder.filename().string();
+    const fs::path png = fs::path(projectRoot()) / "expected" / stage / (gradingSceneName(stageFolder, scene) + ".png");
     return fs::is_regular_file(png) ? png.string() : "";
 }
 

@@ -55,6 +55,21 @@ void splitOverlay(State& s, ImDrawList* fg, ImVec2 size, float scale) {
 
 }
 
+// `text` in lines at most `width` wide, broken after a '/' (a path has no
+// spaces to wrap at); a part wider than that alone stays whole.
+std::vector<std::string> pathLines(const std::string& text, float width) {
+    std::vector<std::string> lines(1);
+    for (std::size_t from = 0; from < text.size();) {
+        std::size_t to = text.find('/', from);
+        to = to == std::string::npos ? text.size() : to + 1;
+        const std::string part = text.substr(from, to - from);
+        if (!lines.back().empty() && ImGui::CalcTextSize((lines.back() + part).c_str()).x > width) lines.emplace_back();
+        lines.back() += part;
+        from = to;
+    }
+    return lines;
+}
+
 // Frame time, bottom right, always; in the samples view the samples too;
 // while the image refines, a small pie of its progress.
 void statusLine(const State& s, ImDrawList* fg, ImVec2 size, float scale) {
@@ -69,9 +84,14 @@ void statusLine(const State& s, ImDrawList* fg, ImVec2 size, float scale) {
         const glm::ivec3 d = s.coarseVolume->dims();
         std::snprintf(quality, sizeof quality, "  moving: level %d of the pyramid (%dx%dx%d)%s", s.coarseLevel, d.x, d.y,
                       d.z, coarseFiltering(s.scene).c_str());
-    } else if (s.interactive && s.refineStep == 0)
+    } else if (s.tiling.active) {
+        std::snprintf(quality, sizeof quality, "  rendering %dx%d: %d%%", s.tiling.width, s.tiling.height,
+                      int(100.0 * s.tiling.done / std::max(1, s.tiling.height)));
+    } else if (s.interactive && s.refineStep == 0) {
         std::snprintf(quality, sizeof quality, "  moving: reduced size, double step");
-    else if (s.interactive) std::snprintf(quality, sizeof quality, "  refining %d/%d", s.refineStep, s.refineSteps);
+    } else if (s.interactive) {
+        std::snprintf(quality, sizeof quality, "  refining %d/%d", s.refineStep, s.refineSteps);
+    }
     char line[320];
     std::snprintf(line, sizeof line, "%s  render %.1f ms (%.1f frames/s)  %dx%d%s%s", s.scene.renderer.c_str(),
                   s.renderMs, s.renderMs > 0 ? 1000.0 / s.renderMs : 0.0, s.imageWidth, s.imageHeight, quality, samples);
@@ -79,10 +99,27 @@ void statusLine(const State& s, ImDrawList* fg, ImVec2 size, float scale) {
     fg->AddRectFilled(ImVec2(size.x - t.x - 18 * scale, size.y - t.y - 14 * scale), ImVec2(size.x, size.y),
                       IM_COL32(0, 0, 0, 150));
     fg->AddText(ImVec2(size.x - t.x - 10 * scale, size.y - t.y - 8 * scale), IM_COL32(230, 230, 230, 255), line);
+    // Where P saved the window, for a while, over the status line: the full
+    // path, broken after a '/' where it is wider than the window.
+    if (!s.lastScreenshot.empty() && Clock::now() < s.lastScreenshotUntil) {
+        const std::vector<std::string> lines = pathLines("screenshot saved: " + s.lastScreenshot, size.x - 30 * scale);
+        const float h = ImGui::GetTextLineHeight();
+        float y = size.y - t.y - 20 * scale - h * float(lines.size());
+        float widest = 0.0f;
+        for (const std::string& l : lines) widest = std::max(widest, ImGui::CalcTextSize(l.c_str()).x);
+        fg->AddRectFilled(ImVec2(size.x - widest - 18 * scale, y - 4 * scale), ImVec2(size.x, y + h * float(lines.size()) + 4 * scale),
+                          IM_COL32(0, 0, 0, 170));
+        for (const std::string& l : lines) {
+            fg->AddText(ImVec2(size.x - ImGui::CalcTextSize(l.c_str()).x - 10 * scale, y), IM_COL32(160, 230, 160, 255), l.c_str());
+            y += h;
+        }
+    }
     if (!s.interactive) return;
     // The progress mark: a pie that fills as the resolution doubles.
     const float r = 0.5f * t.y, cx = size.x - t.x - 18 * scale - r - 8 * scale, cy = size.y - 0.5f * t.y - 8 * scale;
-    const float done = s.refineSteps > 0 ? float(s.refineStep) / float(s.refineSteps + 1) : 0.0f;
+    float done = s.refineSteps > 0 ? float(s.refineStep) / float(s.refineSteps + 1) : 0.0f;
+    if (s.tiling.active)  // this step's share, plus the part of it already drawn
+        done += float(s.tiling.done) / float(std::max(1, s.tiling.height)) / float(s.refineSteps + 1);
     fg->AddCircleFilled(ImVec2(cx, cy), r + 2, IM_COL32(0, 0, 0, 150));
     fg->AddCircle(ImVec2(cx, cy), r, IM_COL32(255, 200, 80, 255), 24, 1.5f * scale);
     if (done > 0.0f) {
@@ -117,7 +154,7 @@ std::pair<std::string, std::string> foldedMessage(const std::string& text) {
 
 // A side's render error, or a shader that no longer compiles (the last good
 // one keeps rendering): the first error line, the rest folded under it.
-void errorBox(const State& s, ImVec2 size, float scale) {
+void errorBox(const State& s, ImVec2 size, float scale, float top) {
     std::vector<std::string> errors;
     for (const Side* side : {&s.main, &s.other}) {
         if (!side->engine) continue;
@@ -126,7 +163,7 @@ void errorBox(const State& s, ImVec2 size, float scale) {
             errors.push_back(side->engine->shaderError() + "\n(showing the last shader that compiled)");
     }
     if (errors.empty()) return;
-    ImGui::SetNextWindowPos(ImVec2(size.x * 0.5f, 10 * scale), ImGuiCond_Always, ImVec2(0.5f, 0.0f));
+    ImGui::SetNextWindowPos(ImVec2(size.x * 0.5f, std::max(top, 10 * scale)), ImGuiCond_Always, ImVec2(0.5f, 0.0f));
     ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(size.x * 0.8f, size.y * 0.6f));
     ImGui::SetNextWindowBgAlpha(0.9f);
     ImGui::Begin("shader error", nullptr,
@@ -156,8 +193,10 @@ void plateText(ImDrawList* fg, ImFont* font, float fontSize, ImVec2 centreTop, I
     fg->AddText(font, fontSize, at, colour, text.c_str(), nullptr, wrap);
 }
 
-// A deck's caption, large, above the bottom edge; the slide number beside it.
-void deckCaption(const State& s, ImDrawList* fg, ImVec2 size, float scale) {
+// A deck's caption, large, above the bottom edge; the slide number at the
+// bottom left in the caption's font. Both go on the background list: under
+// every panel, tooltip and window, so that none of them is ever covered.
+void deckCaption(const State& s, ImDrawList* bg, ImVec2 size, float scale) {
     if (!s.deck) return;
     const Slide& slide = s.deck->slides[std::size_t(s.slide)];
     ImFont* font = captionFont();
@@ -165,10 +204,15 @@ void deckCaption(const State& s, ImDrawList* fg, ImVec2 size, float scale) {
     const std::string text = slide.caption.empty() ? slide.scene.renderer : slide.caption;
     const float wrap = size.x * 0.8f;
     const float height = font->CalcTextSizeA(px, FLT_MAX, wrap, text.c_str()).y;
-    plateText(fg, font, px, ImVec2(size.x * 0.5f, size.y - height - 56 * scale), IM_COL32(255, 255, 255, 255), text, wrap);
+    plateText(bg, font, px, ImVec2(size.x * 0.5f, size.y - height - 56 * scale), IM_COL32(255, 255, 255, 255), text, wrap);
     char number[32];
     std::snprintf(number, sizeof number, "%d / %zu", s.slide + 1, s.deck->slides.size());
-    fg->AddText(ImVec2(14 * scale, size.y - ImGui::GetTextLineHeight() - 10 * scale), IM_COL32(220, 220, 220, 230), number);
+    const float numberPx = 0.6f * px;  // half again the text's size, as large as the scale makes the caption
+    const ImVec2 t = font->CalcTextSizeA(numberPx, FLT_MAX, 0.0f, number);
+    const ImVec2 at(14 * scale, size.y - t.y - 10 * scale);
+    bg->AddRectFilled(ImVec2(at.x - 6 * scale, at.y - 4 * scale), ImVec2(at.x + t.x + 6 * scale, at.y + t.y + 4 * scale),
+                      IM_COL32(0, 0, 0, 150), 4 * scale);
+    bg->AddText(font, numberPx, at, IM_COL32(230, 230, 230, 255), number);
 }
 
 // Where the ray profile was taken: a ring on that pixel while the camera is
@@ -244,17 +288,23 @@ void drawOverlays(State& s) {
     if (s.volume) drawClipPlanes(s, bg);  // under the panels, over the image
     splitOverlay(s, fg, size, scale);
     profileMarker(s, fg, size, scale);
-    deckCaption(s, fg, size, scale);
-    statusLine(s, fg, size, scale);
+    deckCaption(s, bg, size, scale);
+    statusLine(s, bg, size, scale);  // under the panels too: never over a control
+    float noticeBottom = 0.0f;  // the error box goes below the checkerboard's line
     if (!s.stubNotice.empty()) {  // the checkerboard, explained: centred in the space right of the controls
         const float left = s.showPanel ? s.panelRight + 10 * scale : 0.0f;
+        const float wrap = std::max(200.0f, 0.9f * (size.x - left) - 24 * scale);
         plateText(fg, ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(0.5f * (left + size.x), 12 * scale),
-                  IM_COL32(255, 200, 90, 255), s.stubNotice, std::max(200.0f, 0.9f * (size.x - left) - 24 * scale));
+                  IM_COL32(255, 200, 90, 255), s.stubNotice, wrap);
+        noticeBottom = 12 * scale + ImGui::GetFont()->CalcTextSizeA(ImGui::GetFontSize(), FLT_MAX, wrap, s.stubNotice.c_str()).y +
+                       8 + 6 * scale;
     }
-    errorBox(s, size, scale);
+    errorBox(s, size, scale, noticeBottom);
     if (!s.toast.empty() && Clock::now() < s.toastUntil) {
         const ImVec2 tt = ImGui::CalcTextSize(s.toast.c_str());
-        const ImVec2 at(size.x * 0.5f - tt.x * 0.5f, size.y - 70 * scale);
+        // (Above the screenshot's path, when it is shown.)
+        const bool path = !s.lastScreenshot.empty() && Clock::now() < s.lastScreenshotUntil;
+        const ImVec2 at(size.x * 0.5f - tt.x * 0.5f, size.y - 70 * scale - (path ? 4.0f * ImGui::GetTextLineHeight() : 0.0f));
         fg->AddRectFilled(ImVec2(at.x - 10, at.y - 6), ImVec2(at.x + tt.x + 10, at.y + tt.y + 6), IM_COL32(20, 20, 30, 220), 6);
         fg->AddText(at, IM_COL32(255, 255, 255, 255), s.toast.c_str());
     }

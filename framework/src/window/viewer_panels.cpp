@@ -191,7 +191,7 @@ void techniquePanel(State& s) {
     ImGui::Checkbox("ray profile", &s.showProfile);
     if (ImGui::Button("reload shaders (R)")) reloadShaders(s);
     ImGui::SameLine();
-    if (ImGui::Button("screenshot (P)")) s.screenshotRequest = timestampedScreenshotName();
+    if (ImGui::Button("screenshot (P)")) s.screenshotRequest = timestampedScreenshotName(), s.screenshotByKey = true;
     ImGui::SameLine();
     if (ImGui::Button("help (H)")) s.showHelp = !s.showHelp;
 

@@ -83,6 +83,8 @@ void prepareCoarse(State& s) {
         }
 }
 
+}  // namespace
+
 // Renders one side, or counts its samples in the samples view. Returns
 // the samples counted (0 when rendering normally).
 double renderSide(Side& side, const Scene& scene, bool countSamples, bool coarse) {
@@ -98,8 +100,6 @@ double renderSide(Side& side, const Scene& scene, bool countSamples, bool coarse
     }
     return 0.0;
 }
-
-}  // namespace
 
 void setImplementation(Side& side, const std::string& root, const Volume& volume) {
     auto engine = std::make_unique<RenderEngine>(root);  // throws for a folder that does not exist
@@ -199,6 +199,47 @@ static void adaptReduction(State& s, bool coarse) {
     else if (ratio < 0.9) r = std::max(largest, r / std::min(1.25, std::sqrt(1.0 / std::max(ratio, 1e-3))));
 }
 
+namespace {
+
+// A student release: the grading scene as graded, against its expected image.
+void renderExpectedSide(State& s) {
+    updateExpected(s);
+    const auto t0 = Clock::now();
+    s.samplesShown = false;
+    if (s.expected.available) renderSide(s.main, s.expected.scene, false, false);
+    if (s.expected.available) updateStubNotice(s, s.expected.scene);
+    glFinish();
+    s.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    s.imageWidth = s.expected.width, s.imageHeight = s.expected.height;
+    s.interactive = false;
+    s.dirty = false;
+}
+
+// Both sides at once (or their sample counts), and what the next frame
+// needs to know of it.
+void renderWhole(State& s, const Scene& mainScene, const Scene& otherScene, bool coarse, bool dragging) {
+    const Volume& shown = coarse ? *s.coarseVolume : *s.volume;
+    const auto t0 = Clock::now();
+    s.samplesShown =
+        s.showSamples && samplesCountable(mainScene) && (s.split == SplitMode::Off || samplesCountable(otherScene));
+    s.samplesTaken = renderSide(s.main, mainScene, s.samplesShown, coarse);
+    if (s.split != SplitMode::Off) renderSide(s.other, otherScene, s.samplesShown, coarse);
+    glFinish();
+    s.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    if (!coarse && !s.samplesShown) s.msPerPixel = s.renderMs / (double(mainScene.width) * mainScene.height);
+    if (s.samplesShown) {
+        // The scale: the samples along the box's diagonal at this frame's step.
+        const double most = glm::length(shown.extent()) / (mainScene.step * shown.minSpacing());
+        s.countScale = float(1.0 / std::max(most, 1.0));
+        s.samplesFull = samplesByRule(shown, mainScene);
+    }
+    s.imageWidth = mainScene.width, s.imageHeight = mainScene.height;
+    if (dragging) adaptReduction(s, coarse);
+    s.coarseShown = coarse;
+}
+
+}  // namespace
+
 void renderFrame(State& s) {
     // A side whose program has never compiled has no files to watch yet:
     // try it again every second, so that saving the fix shows the image.
@@ -209,68 +250,55 @@ void renderFrame(State& s) {
     }
     // Live reload: a saved shader file recompiles at once.
     if (s.main.engine && s.watcher.changed(s.main.engine->shaderSources())) reloadShaders(s);
+    for (Side* side : {&s.main, &s.other})  // wireframes as wide as the UI's scale makes its lines
+        for (RenderEngine* engine : {side->engine.get(), side->coarse.get()})
+            if (engine) engine->setLineWidth(s.contentScale);
     const bool busy = s.dragging || s.panning || Clock::now() - s.lastInput < kSettle;
+    // A large image in progress: its next band, unless the scene changed.
+    if (s.tiling.active && !s.dirty) return continueTiling(s);
+    if (s.tiling.active) cancelTiling(s);
     // Nothing new to show: unless the last images are reduced and the
     // mouse has settled, keep them.
     if (!s.dirty && !(s.interactive && !busy)) return;
     if (s.fbWidth <= 0 || s.fbHeight <= 0) return;
-    if (comparesWithExpected(s)) {
-        // A student release: the grading scene as graded, against its expected image.
-        updateExpected(s);
-        const auto t0 = Clock::now();
-        s.samplesShown = false;
-        if (s.expected.available) renderSide(s.main, s.expected.scene, false, false);
-        glFinish();
-        s.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-        s.imageWidth = s.expected.width, s.imageHeight = s.expected.height;
-        s.interactive = false;
-        s.dirty = false;
-        return;
-    }
+    if (comparesWithExpected(s)) return renderExpectedSide(s);
     // While the mouse is busy: the coarse level (or the reduced size and
     // twice the step). Once it rests: the full level at twice the last
-    // resolution each frame, full step, up to full size.
+    // resolution each frame, full step, up to full size. A change made
+    // without the mouse (a key, a slide) starts at the size that fits a frame.
     const bool dragging = busy && s.dirty;
     const bool coarse = dragging && coarseDrawable(s);
+    const bool refining = !s.dirty && s.interactive;
     double reduction = 1.0;
     if (dragging) {
         reduction = coarse ? s.coarseReduction : s.reduction;
         s.refineSteps = std::max(int(std::ceil(std::log2(reduction) - 1e-9)), coarse ? 1 : 0);
         s.refineStep = 0;
-    } else if (!s.dirty && s.interactive) {
+    } else if (refining) {
         reduction = std::max(1.0, s.shownReduction * 0.5);
         s.refineStep = std::min(s.refineStep + 1, s.refineSteps);
+    } else if (!s.showSamples) {
+        reduction = reductionForBudget(s);
+        s.refineSteps = int(std::ceil(std::log2(reduction) - 1e-9));
+        s.refineStep = 0;
     }
     const bool reduced = reduction > 1.0;
     const int w = reduced ? std::max(1, int(s.fbWidth / reduction)) : s.fbWidth;
     const int h = reduced ? std::max(1, int(s.fbHeight / reduction)) : s.fbHeight;
     if (s.split != SplitMode::Off && !s.other.engine) setImplementation(s.other, "", *s.volume);
     if (coarse) prepareCoarse(s);
-    const Volume& shown = coarse ? *s.coarseVolume : *s.volume;
-    const auto t0 = Clock::now();
     const Scene mainScene = sideScene(s, s.main, w, h, dragging, coarse);
     Scene otherScene;
     if (s.split != SplitMode::Off) otherScene = sideScene(s, s.other, w, h, dragging, coarse);
-    s.samplesShown =
-        s.showSamples && samplesCountable(mainScene) && (s.split == SplitMode::Off || samplesCountable(otherScene));
-    s.samplesTaken = renderSide(s.main, mainScene, s.samplesShown, coarse);
-    if (s.split != SplitMode::Off) renderSide(s.other, otherScene, s.samplesShown, coarse);
-    glFinish();
-    s.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-    if (s.samplesShown) {
-        // The scale: the samples along the box's diagonal at this frame's step.
-        const double most = glm::length(shown.extent()) / (mainScene.step * shown.minSpacing());
-        s.countScale = float(1.0 / std::max(most, 1.0));
-        s.samplesFull = samplesByRule(shown, mainScene);
-    }
-    s.imageWidth = w, s.imageHeight = h;
-    if (dragging) adaptReduction(s, coarse);
-    s.coarseShown = coarse;
+    s.dirty = false;
+    // A refinement step too large for one frame: a band of rows per frame.
+    if (refining && !s.showSamples && tooSlowForOneFrame(s, w, h))
+        return startTiling(s, mainScene, otherScene, reduction);
+    renderWhole(s, mainScene, otherScene, coarse, dragging);
     s.interactive = reduced || coarse;
     s.shownReduction = reduction;
     if (!s.interactive) s.refineStep = s.refineSteps = 0;
-    s.dirty = false;
-    if (!s.interactive) updateStubNotice(s);
+    if (!s.interactive) updateStubNotice(s, mainScene);
 }
 
 void presentFrame(State& s) {
@@ -298,13 +326,24 @@ void presentFrame(State& s) {
         glActiveTexture(GL_TEXTURE0 + i);
         glBindTexture(GL_TEXTURE_2D, textures[i]);
         // Reduced images are filtered up to the window.
-        const GLint filter = s.interactive && !expected ? GL_LINEAR : GL_NEAREST;
+        const GLint filter = s.interactive && !expected && !s.tiling.active ? GL_LINEAR : GL_NEAREST;
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+    }
+    // Under the bands of a large image not yet rendered: the images shown before.
+    const unsigned previews[2] = {s.tiling.active ? s.main.previewTexture : textures[0],
+                                  s.tiling.active && split && s.other.previewTexture ? s.other.previewTexture
+                                                                                     : textures[1]};
+    for (int i = 0; i < 2; ++i) {
+        glActiveTexture(GL_TEXTURE2 + i);
+        glBindTexture(GL_TEXTURE_2D, previews[i]);
     }
     program->use();
     program->set("u_left", 0);
     program->set("u_right", 1);
+    program->set("u_left_preview", 2);
+    program->set("u_right_preview", 3);
+    program->set("u_new_from", expected ? 0.0f : tilingDoneFrom(s));
     program->set("u_viewport_size", glm::vec2(s.fbWidth, s.fbHeight));
     program->set("u_divider", s.divider * float(s.fbWidth));
     program->set("u_mode", !split ? 0 : s.split == SplitMode::Split ? 1 : 2);

@@ -3,7 +3,6 @@
 #include "viewer_script_runner.h"
 
 #include <GLFW/glfw3.h>
-#include <imgui_impl_glfw.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -24,7 +23,7 @@ int glfwKey(const std::string& name) {
         {"left", GLFW_KEY_LEFT},       {"right", GLFW_KEY_RIGHT},        {"up", GLFW_KEY_UP},
         {"down", GLFW_KEY_DOWN},       {"pageup", GLFW_KEY_PAGE_UP},     {"pagedown", GLFW_KEY_PAGE_DOWN},
         {"home", GLFW_KEY_HOME},       {"end", GLFW_KEY_END},            {"plus", GLFW_KEY_EQUAL},
-        {"minus", GLFW_KEY_MINUS}};
+        {"minus", GLFW_KEY_MINUS},     {"p", GLFW_KEY_P}};
     for (const auto& [n, key] : keys)
         if (name == n) return key;
     return GLFW_KEY_UNKNOWN;  // parsing already refused other names
@@ -131,9 +130,15 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
     // A key pressed by the last step goes up one frame later, through the
     // same callback GLFW calls, so the viewer sees a person's key press.
     if (heldKey_ != 0) {
-        ImGui_ImplGlfw_KeyCallback(window, heldKey_, 0, GLFW_RELEASE, 0);
+        keyEvent(window, heldKey_, 0, GLFW_RELEASE, 0);
         heldKey_ = 0;
         return Continue;
+    }
+    // `press` and `rendering` do not wait for the image: keys while it renders.
+    noteFrame(s);
+    if (next_ < steps_.size() && waitFrames_ == 0 && dragFrames_ == 0 && !settling_) {
+        if (steps_[next_].command == "press") return press(s, window, steps_[next_++]);
+        if (steps_[next_].command == "rendering") return rendering(s, steps_[next_]);
     }
     // A frame is rendered between steps; `wait N` adds N more, and every
     // step waits for a full-quality image first.
@@ -143,7 +148,7 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
     }
     if (dragFrames_ > 0 || settling_) return drag(s);
     if (s.dirty || s.interactive) return Continue;  // (interactive: still refining)
-    if (next_ >= steps_.size()) return Done;
+    if (next_ >= steps_.size()) return finished(s);
     const ViewerStep& st = steps_[next_++];
     const std::string& c = st.command;
     try {
@@ -151,7 +156,7 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
             // applied: the next frame shows it
         } else if (c == "key") {
             heldKey_ = glfwKey(word(st, 0));
-            ImGui_ImplGlfw_KeyCallback(window, heldKey_, 0, GLFW_PRESS, 0);
+            keyEvent(window, heldKey_, 0, GLFW_PRESS, 0);
             return Continue;  // the viewer's key handling marks what changed
         } else if (c == "drag") {
             dragDx_ = number(st, 0), dragDy_ = number(st, 1), dragFrames_ = integer(st, 2);
@@ -166,7 +171,7 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
         } else if (c == "screenshot") {
             s.screenshotRequest = word(st, 0);
         } else if (c == "quit") {
-            return Done;
+            return finished(s);
         } else {
             failStep(st, "this viewer cannot run '" + c + "'");
         }
@@ -176,6 +181,58 @@ ScriptRunner::Progress ScriptRunner::step(State& s, GLFWwindow* window) {
         failStep(st, what);
     }
     s.dirty = true;
+    return Continue;
+}
+
+ScriptRunner::Progress ScriptRunner::finished(const State& s) const {
+    if (!bandFrameMs_.empty()) {  // how the UI kept up while images rendered in bands
+        std::vector<double> t = bandFrameMs_;
+        std::sort(t.begin(), t.end());
+        std::printf("frames while rendering in bands: %zu, median %.1f ms, longest %.1f ms; the last image: %.1f ms\n",
+                    t.size(), t[t.size() / 2], t.back(), s.renderMs);
+        std::fflush(stdout);
+    }
+    return Done;
+}
+
+void ScriptRunner::noteFrame(const State& s) {
+    const Clock::time_point now = Clock::now();
+    if (s.tiling.active && lastFrame_ != Clock::time_point{})
+        bandFrameMs_.push_back(std::chrono::duration<double, std::milli>(now - lastFrame_).count());
+    lastFrame_ = now;
+}
+
+ScriptRunner::Progress ScriptRunner::rendering(State& s, const ViewerStep& st) {
+    // Begun, with more than two bands still to do: a key in the next frame comes while it renders.
+    if (s.tiling.active && s.tiling.done > 0 && s.tiling.height - s.tiling.done > 2 * s.tiling.rows) {
+        ++next_;
+        waitedFrames_ = 0;
+        std::printf("rendering %dx%d in bands of %d rows\n", s.tiling.width, s.tiling.height, s.tiling.rows);
+        std::fflush(stdout);
+        return Continue;
+    }
+    if (++waitedFrames_ > 6000) failStep(st, "the viewer did not render an image in bands within 6000 frames");
+    return Continue;
+}
+
+ScriptRunner::Progress ScriptRunner::press(State& s, GLFWwindow* window, const ViewerStep& st) {
+    std::string keys;
+    for (int i = 0; i < int(st.args.size()); ++i) {
+        const int key = glfwKey(word(st, i));
+        keyEvent(window, key, 0, GLFW_PRESS, 0);
+        keyEvent(window, key, 0, GLFW_RELEASE, 0);
+        keys += (keys.empty() ? "" : " ") + word(st, i);
+    }
+    std::vector<double> t = bandFrameMs_;  // the frames drawn while bands rendered, so far
+    std::sort(t.begin(), t.end());
+    if (s.tiling.active)
+        std::printf("press %s: while rendering %dx%d, %d of %d rows done, frame %d of the image; frames while "
+                    "rendering in bands so far: %zu, median %.1f ms, longest %.1f ms\n",
+                    keys.c_str(), s.tiling.width, s.tiling.height, s.tiling.done, s.tiling.height, s.tiling.frames,
+                    t.size(), t.empty() ? 0.0 : t[t.size() / 2], t.empty() ? 0.0 : t.back());
+    else
+        std::printf("press %s: %s\n", keys.c_str(), s.dirty || s.interactive ? "while the image refines" : "idle");
+    std::fflush(stdout);
     return Continue;
 }
 

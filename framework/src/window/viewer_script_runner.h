@@ -22,6 +22,13 @@ public:
 
 private:
     Progress drag(State& s);
+    Progress press(State& s, GLFWwindow* window, const ViewerStep& st);
+    Progress rendering(State& s, const ViewerStep& st);
+    void noteFrame(const State& s);
+    Progress finished(const State& s) const;  // Done, after a line on the frames drawn while bands rendered  // the time between frames while an image renders in bands
+    Clock::time_point lastFrame_{};
+    std::vector<double> bandFrameMs_;
+    int waitedFrames_ = 0;
     std::vector<ViewerStep> steps_;
     std::size_t next_ = 0;
     int waitFrames_ = 0;

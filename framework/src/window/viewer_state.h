@@ -54,6 +54,23 @@ struct Side {
     // view moves (volume_pyramid.h); made on the first drag.
     std::unique_ptr<RenderEngine> coarse;
     std::string error;           // this side's last render error
+    // While a large image is rendered a band at a time (viewer_tiles.cpp):
+    // the image shown before it, under the bands not yet rendered.
+    unsigned previewTexture = 0, previewFbo = 0;
+};
+
+// A large image rendered a band of rows at a time, one band per frame, so
+// that the UI keeps answering at the display's rate (viewer_tiles.cpp).
+struct Tiling {
+    bool active = false;
+    int width = 0, height = 0;      // the image's size
+    int done = 0;                   // rows finished, from the top
+    int rows = 16;                  // rows the next band renders (adapts to the frame budget)
+    int previewWidth = 0, previewHeight = 0;  // the size of the image shown under the rest
+    double reduction = 1.0;         // the image's reduction (1: the window's size)
+    double ms = 0.0;                // render time so far
+    int frames = 0;                 // frames it has taken so far
+    Scene mainScene, otherScene;
 };
 
 // A student release's split view compares with a shipped expected image
@@ -107,6 +124,14 @@ struct State {
     bool relayout = true;           // place the panels for the current scale (the next frame)
     float requestedUiScale = 0.0f;  // a key asked for this scale (0: none), applied between frames
     int imageWidth = 0, imageHeight = 0;  // size of the images last rendered
+    Tiling tiling;                  // a large image in progress, a band per frame
+    double msPerPixel = 0.0;        // the last render's time per pixel (both sides), to plan the next
+    // Key presses since the last frame (key, modifiers), through GLFW's key
+    // callback: a key pressed and released while a frame took long is
+    // still seen (ImGui 1.86 keeps only the keys down at the frame's start).
+    std::vector<std::pair<int, int>> keyPresses;
+    std::string lastScreenshot;     // the status line names where P saved it (absolute) ...
+    Clock::time_point lastScreenshotUntil{};  // ... until then
     // The samples view: each pixel coloured by the samples its ray took
     // (RenderEngine::countSamples), on a scale where yellow is the most a
     // ray through the box's diagonal can take; the left (or only) side's
@@ -153,13 +178,13 @@ struct State {
     // The current side's functions that still hold the starter code's stub
     // (the checkerboard), as one line; empty when none.
     std::string stubNotice;
-    std::string stubKey;  // the files (and their times) it was made from
 
     // Messages: a load error or "saved screenshot" for a few seconds.
     std::string toast;
     Clock::time_point toastUntil{};
     std::vector<std::string> dropped;  // files dropped on the window, loaded next frame
     std::string screenshotRequest;     // a path: save the window after this frame
+    bool screenshotByKey = false;      // ... asked for by P (or the panel's button): say where it went
 
     void say(const std::string& message, double seconds = 4.0) {
         toast = message;
@@ -173,6 +198,9 @@ void setScene(State& s, const Scene& scene, const std::string& scenePath);  // t
 // The transfer-function preset (datasets/tf/) equal to the scene's, or "".
 std::string presetOf(const Scene& scene, const Volume& volume);
 void setImplementation(Side& side, const std::string& root, const Volume& volume);
+// Renders one side (its engine, or the coarse one), or counts its samples;
+// returns the samples counted (0 when rendering). A failure is the side's error.
+double renderSide(Side& side, const Scene& scene, bool countSamples, bool coarse);
 // After s.volume changed: its coarse level is chosen (and made on the
 // next drag).
 void resetCoarseLevel(State& s);
@@ -190,13 +218,33 @@ void saveWindowScreenshot(int width, int height, const std::string& path);
 void pickRayProfile(State& s, glm::ivec2 pixel);  // framebuffer pixel; opens the ray-profile panel
 std::string timestampedScreenshotName();
 
+// viewer_tiles.cpp: a large image a band at a time.
+constexpr double kFrameBudgetMs = 25.0;  // rendering's share of a frame while the UI must answer
+// Whether the image of `w` x `h` pixels is expected to take longer than a
+// frame's budget (from the last render's time per pixel).
+bool tooSlowForOneFrame(const State& s, int w, int h);
+// The reduction (1, 2, 4, 8 or 16) whose image is expected to fit a frame's budget.
+double reductionForBudget(const State& s);
+// Starts rendering the sides' scenes (at w x h) in bands; the image shown
+// now stays under the bands not yet rendered.
+void startTiling(State& s, const Scene& mainScene, const Scene& otherScene, double reduction);
+void continueTiling(State& s);  // renders the next band; finishes the image after the last
+void cancelTiling(State& s);    // the scene changed: the next render starts over
+// For the presenter: the row (from the bottom, in the image's rows) from
+// which the image is new; 0 when it is all new.
+float tilingDoneFrom(const State& s);
+// Records a key press for handleKeys and passes the event on to ImGui (the
+// GLFW key callback; a script's `key` and `press` steps come this way too).
+void keyEvent(GLFWwindow* window, int key, int scancode, int action, int mods);
+
 // viewer_expected.cpp
 bool comparesWithExpected(const State& s);  // split view without a reference
 void updateExpected(State& s);            // finds and loads the current scene's expected image
 
 
 // viewer_stubs.cpp
-void updateStubNotice(State& s);    // rescans the main side's stage folders for stubs
+// After a full-quality image of `scene`: the line naming the stubs it reached.
+void updateStubNotice(State& s, const Scene& scene);
 
 // viewer_panels.cpp, viewer_overlays.cpp
 void drawPanels(State& s);

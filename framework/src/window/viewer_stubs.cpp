@@ -2,30 +2,33 @@
 //
 // A student's first picture is the magenta-and-black checkerboard of the
 // starter code's stubs (shaders/voxlab/not_implemented.glsl). The picture
-// alone does not say what is missing, so after each full-quality render the
-// line of missingFunctionsNotice (grading.h) is shown over the image and,
-// when it changes, printed to the terminal.
+// alone does not say what is missing, so after each full-quality render that
+// shows the checkerboard the line of missingFunctionsNotice (grading.h) is
+// shown over the image and, when it changes, printed to the terminal.
 #include <cstdio>
-#include <filesystem>
 
 #include "viewer_state.h"
 #include "voxlab/grading.h"
+#include "voxlab/error.h"
+#include "voxlab/image.h"
 
 namespace voxlab::viewer {
 
-void updateStubNotice(State& s) {
+void updateStubNotice(State& s, const Scene& scene) {
     if (!s.main.engine) return;
-    // Scanned again only when the render used other files, or one of them
-    // was saved since: a slider dragged at full quality renders every frame.
-    std::string key = s.main.engine->implementationRoot();
-    for (const std::string& f : s.main.engine->lastRenderSources()) {
-        std::error_code ec;
-        const auto stamp = std::filesystem::last_write_time(f, ec);
-        key += "\n" + f + " " + std::to_string(ec ? 0LL : (long long)stamp.time_since_epoch().count());
+    // Only while the checkerboard is on screen, naming the stubs its pixels
+    // reached (drawn again at up to 256 pixels a side, into a target of the
+    // engine's own): a stub compiled in but never run, such as sampling's
+    // under hardware filtering or cubic's under trilinear, is not named.
+    // Reading the image back costs a few ms, and only a starter's stubs pay it.
+    std::string notice;
+    if (!s.main.engine->lastRenderStubs().empty() && s.main.error.empty()) {
+        try {
+            notice = missingFunctionsNotice(stubsReached(*s.main.engine, scene, s.main.engine->readBack(), 256));
+        } catch (const Error& e) {
+            notice = missingFunctionsNotice(s.main.engine->lastRenderStubs());
+        }
     }
-    if (key == s.stubKey) return;
-    s.stubKey = key;
-    const std::string notice = missingFunctionsNotice(*s.main.engine);
     if (!notice.empty() && notice != s.stubNotice) std::fprintf(stderr, "voxlab: %s\n", notice.c_str());
     s.stubNotice = notice;
 }

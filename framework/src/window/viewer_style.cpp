@@ -75,6 +75,11 @@ void applyUiScale(State& s, float userScale, float windowScale) {
     ImGui_ImplOpenGL3_CreateFontsTexture();
     ImGui::GetStyle() = baseStyle();
     ImGui::GetStyle().ScaleAllSizes(scale);
+    if (s.deck) {  // a lecture's caption lies under the panels: none of it shows through them
+        ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 1.0f;
+        ImGui::GetStyle().Colors[ImGuiCol_PopupBg].w = 1.0f;
+    }
+    if (s.contentScale != scale) s.dirty = true;  // the wireframes' lines are as wide as the scale
     s.contentScale = scale;
     s.relayout = true;  // panels move to the places of this scale
 }

@@ -30,6 +30,7 @@ set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
   src/scene/scene.cpp
   src/scene/json_text.cpp
   src/scene/data_path.cpp
+  src/io/project_root.cpp
   src/scene/transfer_function.cpp
   src/scene/transfer_function_2d.cpp
   src/scene/viewer_script.cpp

@@ -48,6 +48,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "voxlab/camera.h"
+#include "voxlab/project_root.h"
 #include "voxlab/transfer_function.h"
 #include "voxlab/transfer_function_2d.h"
 
@@ -219,12 +220,9 @@ struct Scene {
 // the dataset search path: $VOXLAB_DATA_PATH (colon-separated) and the
 // project's datasets/ folder. Phantom specs are returned unchanged. Throws
 // voxlab::Error("NAME: no such file (searched: ...)") when nothing matches.
-// The project's datasets/ folder is $VOXLAB_ROOT/datasets when VOXLAB_ROOT is
-// set, else the one in the source tree this was built from.
+// The project's datasets/ folder is projectRoot()/datasets
+// (voxlab/project_root.h).
 std::string resolveDataPath(const std::string& name, const std::string& baseDir = "");
 
-// The project's root folder (datasets/, shaders/): $VOXLAB_ROOT when set,
-// else the source tree this was built from.
-std::string projectRoot();
 
 }  // namespace voxlab

@@ -44,6 +44,7 @@
 #include "landlock.h"
 #include "syscall_filter.h"
 #include "voxlab/error.h"
+#include "voxlab/project_root.h"
 
 namespace voxlab {
 
@@ -205,6 +206,10 @@ std::vector<std::string> childEnvironment(const ChildLimits& limits) {
         env.push_back(entry);
     }
     if (limits.isolate && !limits.environment.count("PATH")) env.push_back("PATH=/usr/local/bin:/usr/bin:/bin");
+    // The child finds the project where this process found it, whether or
+    // not $VOXLAB_ROOT was set (voxlab/project_root.h).
+    if (limits.isolate && !limits.environment.count("VOXLAB_ROOT") && !std::getenv("VOXLAB_ROOT"))
+        env.push_back("VOXLAB_ROOT=" + projectRoot());
     for (const auto& [key, value] : limits.environment) env.push_back(key + "=" + value);
     return env;
 }

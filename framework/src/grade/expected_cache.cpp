@@ -119,8 +119,7 @@ std::string key(const std::string& worker, const std::string& referenceRoot) {
     addFile(hash, worker.empty() ? fs::path("/proc/self/exe") : fs::path(worker), "worker");
     const fs::path project = projectRoot();
     for (const fs::path& tree : {project / "shaders", project / "datasets", fs::path(referenceRoot),
-                                 fs::path(VOXLAB_SOURCE_DIR) / "framework" / "include",
-                                 fs::path(VOXLAB_SOURCE_DIR) / "framework" / "stage_library"})
+                                 project / "framework" / "include", project / "framework" / "stage_library"})
         addTree(hash, tree);
     return hash.hex();
 }

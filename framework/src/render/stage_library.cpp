@@ -107,27 +107,40 @@ std::vector<std::string> overrideStageFunctions(const CppStages& found) {
 
 namespace {
 
-// What the framework's build made beside it (a path fixed at build time),
-// while it is still there.
-bool builtFileExists(const std::string& path) {
+bool regularFileExists(const std::string& path) {
     struct stat st;
     return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+// An installed tree keeps what the build made in
+// share/voxlab/framework/stage_library/ (framework/CMakeLists.txt's
+// install rules); a build keeps it in its build folder, at a path fixed at
+// build time, while it is still there. The installed copy comes first.
+std::string prebuilt(const std::string& installedName, const char* builtPath) {
+    const std::string installed = projectRoot() + "/framework/stage_library/" + installedName;
+    if (regularFileExists(installed)) return installed;
+    if (builtPath && regularFileExists(builtPath)) return builtPath;
+    return "";
 }
 
 }  // namespace
 
 std::string stageExportsObject() {
 #ifdef VOXLAB_STAGE_EXPORTS_OBJECT
-    if (builtFileExists(VOXLAB_STAGE_EXPORTS_OBJECT)) return VOXLAB_STAGE_EXPORTS_OBJECT;
+    return prebuilt("stage_exports.o", VOXLAB_STAGE_EXPORTS_OBJECT);
+#else
+    return prebuilt("stage_exports.o", nullptr);
 #endif
-    return "";
 }
 
+// The prelude is used only with its precompiled form beside it.
 std::string stagePreludeHeader() {
 #ifdef VOXLAB_STAGE_PRELUDE
-    if (builtFileExists(VOXLAB_STAGE_PRELUDE) && builtFileExists(VOXLAB_STAGE_PRELUDE ".gch")) return VOXLAB_STAGE_PRELUDE;
+    const std::string header = prebuilt("prelude/voxlab_stage_prelude.h", VOXLAB_STAGE_PRELUDE);
+#else
+    const std::string header = prebuilt("prelude/voxlab_stage_prelude.h", nullptr);
 #endif
-    return "";
+    return !header.empty() && regularFileExists(header + ".gch") ? header : "";
 }
 
 // The flags are also framework/CMakeLists.txt's for the exports object and

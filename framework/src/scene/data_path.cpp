@@ -8,10 +8,6 @@
 #include "voxlab/error.h"
 #include "voxlab/scene.h"
 
-#ifndef VOXLAB_SOURCE_DIR
-#define VOXLAB_SOURCE_DIR "."
-#endif
-
 namespace voxlab {
 
 namespace fs = std::filesystem;
@@ -29,11 +25,6 @@ bool exists(const std::string& path) {
 }
 
 }  // namespace
-
-std::string projectRoot() {
-    const std::string root = env("VOXLAB_ROOT");
-    return root.empty() ? VOXLAB_SOURCE_DIR : root;
-}
 
 std::string resolveDataPath(const std::string& name, const std::string& baseDir) {
     if (name.rfind("phantom:", 0) == 0) return name;

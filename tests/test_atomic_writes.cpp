@@ -28,6 +28,7 @@
 
 #include "support/error_of.h"
 #include "support/in_child.h"
+#include "support/temp_dir.h"
 #include "voxlab/atomic_file.h"
 #include "voxlab/error.h"
 #include "voxlab/html_report.h"
@@ -44,12 +45,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string readBytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+std::string readBytes(const fs::path& path) { return readText(path); }
 
 void writeBytes(const fs::path& path, const std::string& bytes) {
     std::ofstream(path, std::ios::binary) << bytes;
@@ -132,15 +128,6 @@ std::vector<Saver> allSavers() {
 
 class AtomicWrites : public ::testing::Test {
 protected:
-    void SetUp() override {
-        std::string pattern = (fs::temp_directory_path() / "voxlab-atomic-XXXXXX").string();
-        ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
-        dir_ = pattern;
-    }
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
     // A fresh folder per saver, so that listings show only its own files.
     fs::path folderFor(const Saver& s) const {
         fs::path d = dir_ / std::to_string(std::hash<std::string>()(s.name));
@@ -148,7 +135,8 @@ protected:
         return d;
     }
     static std::string fileName(const Saver& s) { return s.fixedName.empty() ? "out.dat" : s.fixedName; }
-    fs::path dir_;
+    TempDir tmp_{"voxlab-atomic"};
+    const fs::path dir_ = tmp_.path();
 };
 
 // The message of the voxlab::Error thrown by `f` in a forked child whose

@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "support/axis_columns.h"
+#include "support/cpu_tf.h"
 #include "support/gl_fixture.h"
 
 namespace voxlab::testing {
@@ -26,21 +27,6 @@ namespace {
 
 // ---------------------------------------------------------------------------
 // CPU oracle pieces.
-
-// The piecewise-linear transfer function, written for the test: the control
-// points (sorted by value) interpolated linearly in colour and alpha,
-// clamped to the first/last point outside them.
-glm::dvec4 tfOracle(const std::vector<ControlPoint>& pts, double v) {
-    const auto rgba = [](const ControlPoint& p) { return glm::dvec4(glm::dvec3(p.color), double(p.alpha)); };
-    if (v <= pts.front().value) return rgba(pts.front());
-    if (v >= pts.back().value) return rgba(pts.back());
-    for (std::size_t i = 1; i < pts.size(); ++i)
-        if (v < pts[i].value) {
-            const double t = (v - pts[i - 1].value) / (pts[i].value - pts[i - 1].value);
-            return rgba(pts[i - 1]) + t * (rgba(pts[i]) - rgba(pts[i - 1]));
-        }
-    return rgba(pts.back());
-}
 
 // tfOracle() memoised for integer-valued volumes (every voxel value is an
 // integer in [lo, hi]), so that 256^3 columns stay cheap.

@@ -17,8 +17,11 @@
 #include "voxlab/grader.h"
 #include "voxlab/html_report.h"
 #include "voxlab/image.h"
+#include "support/temp_dir.h"
 
 namespace {
+
+using voxlab::testing::readText;
 
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -32,13 +35,6 @@ fs::path freshFolder(const std::string& name) {
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
-}
-
-std::string readText(const fs::path& path) {
-    std::ifstream file(path, std::ios::binary);
-    std::stringstream text;
-    text << file.rdbuf();
-    return text.str();
 }
 
 // A small gradient image, so that its size can be checked on the page.

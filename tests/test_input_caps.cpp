@@ -26,6 +26,7 @@
 
 #include "support/error_of.h"
 #include "support/in_child.h"
+#include "support/temp_dir.h"
 #include "support/run_command.h"
 #include "voxlab/error.h"
 #include "voxlab/gradients.h"
@@ -115,26 +116,18 @@ std::string loadWithLimitedMemory(const std::string& path, std::uint64_t headroo
 class InputCaps : public ::testing::Test {
 protected:
     void SetUp() override {
-        std::string pattern = (fs::temp_directory_path() / "voxlab-caps-XXXXXX").string();
-        ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
-        dir_ = pattern;
         // Streaming caches (gzip over the cap) go here, not to ~/.cache.
         ::setenv("XDG_CACHE_HOME", (dir_ / "cache").c_str(), 1);
     }
     void TearDown() override {
         ::unsetenv("XDG_CACHE_HOME");
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
     }
     std::string write(const std::string& name, const std::string& text, const Bytes& data = {}) {
-        const std::string path = (dir_ / name).string();
-        std::ofstream out(path, std::ios::binary);
-        out.write(text.data(), std::streamsize(text.size()));
-        out.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size()));
-        return path;
+        return tmp_.write(name, text, data);
     }
     CapVariable defaultCap_{nullptr};  // every test starts from the default cap
-    fs::path dir_;
+    TempDir tmp_{"voxlab-caps"};
+    const fs::path dir_ = tmp_.path();
 };
 
 // ---- the volume cap ---------------------------------------------------------------

@@ -18,6 +18,8 @@
 #include "voxlab/error.h"
 #include "voxlab/volume.h"
 
+#include "support/temp_dir.h"
+
 using namespace voxlab;
 namespace fs = std::filesystem;
 using Bytes = std::vector<std::uint8_t>;
@@ -26,23 +28,9 @@ namespace {
 
 class MalformedInput : public ::testing::Test {
 protected:
-    MalformedInput() {
-        std::string pattern = (fs::temp_directory_path() / "voxlab-malformed-XXXXXX").string();
-        if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-        dir_ = pattern;
-    }
-    ~MalformedInput() override {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
-
     // Writes `text` then `data` to a file in the temporary folder.
     std::string write(const std::string& name, const std::string& text, const Bytes& data = {}) {
-        std::string path = (dir_ / name).string();
-        std::ofstream out(path, std::ios::binary);
-        out.write(text.data(), std::streamsize(text.size()));
-        out.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size()));
-        return path;
+        return tmp_.write(name, text, data);
     }
 
     // loadVolume(path) must throw "<path>: ...<phrase>..." on one line,
@@ -68,7 +56,8 @@ protected:
         EXPECT_LT(seconds, maxSeconds) << message;
     }
 
-    fs::path dir_;
+    voxlab::testing::TempDir tmp_{"voxlab-malformed"};
+    const fs::path dir_ = tmp_.path();
 };
 
 Bytes gzipped(const Bytes& data) {

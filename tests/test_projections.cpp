@@ -180,8 +180,7 @@ Volume testVolume(const std::string& name) {
     if (name == "cthead-inside") return crop(loadVolume(datasetPath("cthead.nrrd")), {80, 70, 30}, {176, 150, 80});
     if (name == "headsq-inside") return crop(loadVolume(datasetPath("headsq.nrrd")), {18, 16, 25}, {46, 48, 75});
     if (name == "bonsai-inside") return crop(loadVolume(datasetPath("bonsai.nrrd")), {90, 60, 90}, {166, 200, 166});
-    if (name.rfind("phantom:", 0) == 0) return makePhantom(name);
-    return loadVolume(datasetPath(name));
+    return namedVolume(name);
 }
 
 std::string paramName(const std::string& s0) {

@@ -148,18 +148,13 @@ std::uint32_t seedFor(const std::string& name) {
 }
 
 // Real datasets of every storage type, and a float phantom.
-Volume testVolume(const std::string& name) {
-    if (name.rfind("phantom:", 0) == 0) return makePhantom(name);
-    return loadVolume(datasetPath(name));
-}
-
 class Sampling : public GlTest, public ::testing::WithParamInterface<std::string> {};
 
 constexpr int kSize = 64;   // pixels per side of each slice image
 constexpr int kAngles = 6;  // random orbits per volume and interpolation
 
 TEST_P(Sampling, TrilinearEqualsCpuTrilinearAtRandomPoints) {
-    const Volume v = testVolume(GetParam());
+    const Volume v = namedVolume(GetParam());
     const double range = v.maxValue() - v.minValue();
     // Tolerance 1/255 of the value range (one grey level). The explicit
     // trilinear stage is float arithmetic on exact voxel values; the only
@@ -176,7 +171,7 @@ TEST_P(Sampling, TrilinearEqualsCpuTrilinearAtRandomPoints) {
 }
 
 TEST_P(Sampling, NearestEqualsTheVoxelThatContainsThePoint) {
-    const Volume v = testVolume(GetParam());
+    const Volume v = namedVolume(GetParam());
     const double range = v.maxValue() - v.minValue();
     // A voxel value comes back exactly up to float rounding of the texel and
     // the window (about 1e-6 of the range); 1e-3 of the range (a quarter of
@@ -203,7 +198,7 @@ TEST_P(Sampling, NearestEqualsTheVoxelThatContainsThePoint) {
 // 1.36 texel steps on the uint8 volumes (8-bit fixed-point filtering) and
 // below 0.001 grey level on the 16-bit and float ones.
 TEST_P(Sampling, HardwareFilteringAgreesWithExplicitTrilinear) {
-    const Volume v = testVolume(GetParam());
+    const Volume v = namedVolume(GetParam());
     const double range = v.maxValue() - v.minValue();
     const double scale = v.type() == VoxelType::UInt8 ? std::max(range, 255.0) : range;
     const double tolerance = 3.0 * scale / 255.0;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "support/error_of.h"
+#include "support/temp_dir.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -26,16 +27,12 @@ namespace {
 class SceneTest : public ::testing::Test {
 protected:
     void SetUp() override {
-        std::string tmpl = (fs::temp_directory_path() / "voxlab_scene_XXXXXX").string();
-        ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
-        dir = tmpl;
         ::unsetenv("VOXLAB_DATA_PATH");
         ::unsetenv("VOXLAB_ROOT");
     }
     void TearDown() override {
         ::unsetenv("VOXLAB_DATA_PATH");
         ::unsetenv("VOXLAB_ROOT");
-        fs::remove_all(dir);
     }
     std::string write(const std::string& rel, const std::string& text) {
         const fs::path p = dir / rel;
@@ -43,7 +40,8 @@ protected:
         std::ofstream(p) << text;
         return p.string();
     }
-    fs::path dir;
+    voxlab::testing::TempDir tmp_{"voxlab_scene"};
+    const fs::path dir = tmp_.path();
 };
 
 Scene parse(const std::string& text, const std::string& baseDir = "") {

@@ -27,6 +27,7 @@
 #include "support/run_command.h"
 #include "voxlab/error.h"
 #include "voxlab/similarity.h"
+#include "support/temp_dir.h"
 
 namespace voxlab::testing {
 namespace {
@@ -59,11 +60,6 @@ const auto* const kRemoveScratch = ::testing::AddGlobalTestEnvironment(new Remov
 void writeText(const fs::path& path, const std::string& text) {
     fs::create_directories(path.parent_path());
     std::ofstream(path, std::ios::binary) << text;
-}
-
-std::string readText(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 // The corpus as a class: the reference's stage files copied into a

@@ -48,19 +48,13 @@
 #include "voxlab/renderer.h"
 #include "voxlab/scene.h"
 #include "voxlab/volume.h"
+#include "support/temp_dir.h"
 
 namespace voxlab::testing {
 namespace {
 
 namespace fs = std::filesystem;
 const fs::path kReference = fs::path(VOXLAB_SOURCE_DIR) / "reference";
-
-std::string readText(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 // The functions a handout's checklist asks for; an item that names another
 // stage's folder (assignments/<other>/) belongs to that stage's handout.

@@ -24,6 +24,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "support/cpu_tf.h"
 #include "support/gl_fixture.h"
 #include "voxlab/camera.h"
 
@@ -32,21 +33,6 @@ namespace {
 
 // ---------------------------------------------------------------------------
 // CPU pieces.
-
-// The piecewise-linear transfer function, written for the test: colour and
-// alpha interpolated linearly between control points (sorted by value),
-// clamped to the end points outside them.
-glm::dvec4 tfOracle(const std::vector<ControlPoint>& pts, double v) {
-    const auto rgba = [](const ControlPoint& p) { return glm::dvec4(glm::dvec3(p.color), double(p.alpha)); };
-    if (v <= pts.front().value) return rgba(pts.front());
-    if (v >= pts.back().value) return rgba(pts.back());
-    for (std::size_t i = 1; i < pts.size(); ++i)
-        if (v < pts[i].value) {
-            const double t = (v - pts[i - 1].value) / (pts[i].value - pts[i - 1].value);
-            return rgba(pts[i - 1]) + t * (rgba(pts[i]) - rgba(pts[i - 1]));
-        }
-    return rgba(pts.back());
-}
 
 TransferFunction preset(const std::string& name) { return TransferFunction::load(datasetPath("tf/" + name)); }
 

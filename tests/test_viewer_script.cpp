@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "support/error_of.h"
+#include "support/temp_dir.h"
 #include "voxlab/camera.h"
 #include "voxlab/error.h"
 #include "voxlab/viewer_script.h"
@@ -175,18 +176,13 @@ TEST(ViewerScript, ErrorsNameFileAndLine) {
 
 class ViewerScriptFile : public ::testing::Test {
 protected:
-    void SetUp() override {
-        std::string tmpl = (std::filesystem::temp_directory_path() / "voxlab_viewer_script_XXXXXX").string();
-        ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
-        dir = tmpl;
-    }
-    void TearDown() override { std::filesystem::remove_all(dir); }
     std::string write(const std::string& name, const std::string& text) {
         const std::string path = (dir / name).string();
         std::ofstream(path) << text;
         return path;
     }
-    std::filesystem::path dir;
+    TempDir tmp_{"voxlab_viewer_script"};
+    const std::filesystem::path dir = tmp_.path();
 };
 
 TEST_F(ViewerScriptFile, ReadsAFileAndNamesItInErrors) {

@@ -16,6 +16,9 @@
 #include "voxlab/error.h"
 #include "voxlab/volume.h"
 
+#include "support/datasets.h"
+#include "support/temp_dir.h"
+
 using namespace voxlab;
 namespace fs = std::filesystem;
 
@@ -23,22 +26,8 @@ namespace {
 
 // ---- helpers -----------------------------------------------------------------
 
-class TempDir {
-public:
-    TempDir() {
-        std::string pattern = (fs::temp_directory_path() / "voxlab-loaders-XXXXXX").string();
-        if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-        path_ = pattern;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    std::string file(const std::string& name) const { return (path_ / name).string(); }
-
-private:
-    fs::path path_;
-};
+using voxlab::testing::datasetPath;
+using voxlab::testing::TempDir;
 
 using Bytes = std::vector<std::uint8_t>;
 
@@ -135,10 +124,6 @@ void expectVolume(const Volume& v, const Sample& s, glm::dvec3 spacing = kSpacin
 std::string nrrdHeader(const Sample& s, const std::string& extra) {
     return "NRRD0004\n# a test volume\ntype: " + s.nrrdType +
            "\ndimension: 3\nsizes: 5 3 4\nspacings: 0.5 1.25 2\n" + extra;
-}
-
-std::string datasetPath(const std::string& name) {
-    return std::string(VOXLAB_SOURCE_DIR) + "/datasets/" + name;
 }
 
 }  // namespace

@@ -13,6 +13,8 @@
 #include "voxlab/scene.h"
 #include "voxlab/volume.h"
 
+#include "datasets.h"
+
 namespace voxlab::testing {
 
 class GlTest : public ::testing::Test {
@@ -52,10 +54,6 @@ private:
 inline Image asPng(Image image) {
     for (float& v : image.rgba) v = float(toByte(v)) / 255.0f;
     return image;
-}
-
-inline std::string datasetPath(const std::string& name) {
-    return std::string(VOXLAB_SOURCE_DIR) + "/datasets/" + name;
 }
 
 }  // namespace voxlab::testing

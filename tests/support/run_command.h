@@ -9,6 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include "temp_dir.h"
+
 namespace voxlab::testing {
 
 struct CommandResult {
@@ -16,12 +18,7 @@ struct CommandResult {
     std::string out, err;
 };
 
-inline std::string readFile(const std::string& path) {
-    std::ifstream in(path);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+inline std::string readFile(const std::string& path) { return readText(path); }
 
 // Runs `command` through the shell with a time limit (seconds).
 inline CommandResult runShell(const std::string& command, int timeoutSeconds = 120) {

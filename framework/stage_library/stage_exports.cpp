@@ -10,15 +10,15 @@
 #include "voxlab/stage_library.h"
 
 namespace voxlab {
-__attribute__((weak)) std::vector<glm::dvec3> planeBoxPolygon(glm::dvec3, double, glm::dvec3, glm::dvec3);
-__attribute__((weak)) int chooseSliceAxis(glm::dvec3);
-__attribute__((weak)) int cubeCase(const double[8], double);
-__attribute__((weak)) glm::dvec3 edgeCrossing(glm::dvec3, glm::dvec3, double, double, double);
-__attribute__((weak)) SplatOrder splatOrder(glm::dvec3);
-__attribute__((weak)) ShearWarp factorShearWarp(const Camera&, glm::ivec3, glm::dvec3);
+#define VOXLAB_STAGE_WEAK(name, Result, Parameters) __attribute__((weak)) Result name Parameters;
+VOXLAB_CPP_STAGE_FUNCTIONS(VOXLAB_STAGE_WEAK)
+#undef VOXLAB_STAGE_WEAK
 }  // namespace voxlab
 
 extern "C" voxlab::CppStages voxlab_stage_library_functions() {
-    return {&voxlab::planeBoxPolygon, &voxlab::chooseSliceAxis, &voxlab::cubeCase, &voxlab::edgeCrossing,
-            &voxlab::splatOrder, &voxlab::factorShearWarp};
+    voxlab::CppStages offered;
+#define VOXLAB_STAGE_OFFERED(name, Result, Parameters) offered.name = &voxlab::name;
+    VOXLAB_CPP_STAGE_FUNCTIONS(VOXLAB_STAGE_OFFERED)
+#undef VOXLAB_STAGE_OFFERED
+    return offered;
 }

@@ -35,7 +35,7 @@ set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
   src/scene/transfer_function_2d.cpp
   src/scene/viewer_script.cpp
   src/scene/deck.cpp
-  src/render/camera.cpp
+  src/volume/camera.cpp
   src/io/atomic_file.cpp
   src/io/fd_io.cpp
   src/io/number_text.cpp

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -14,10 +14,13 @@
 
 namespace voxlab::testing {
 
-// A file's bytes as a string ("" when it cannot be read).
+// A file's bytes as a string ("" when it cannot be read, a folder included:
+// the stream operator catches the read error an iterator would throw).
 inline std::string readText(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
+    std::ostringstream text;
+    if (in) text << in.rdbuf();
+    return text.str();
 }
 
 // A new folder under the system's temporary folder, named PREFIX-XXXXXX,

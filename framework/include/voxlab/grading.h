@@ -73,6 +73,8 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "voxlab/image.h"
+#include "voxlab/stub_text.h"
+#include "voxlab/stubs_reached.h"
 
 namespace voxlab {
 
@@ -212,11 +214,6 @@ nlohmann::json toJson(const Tolerance& t);
 // over every scene's.
 Tolerance overTolerance(const Tolerance& base, const nlohmann::json& keys, const std::string& where);
 
-// The functions of a stage's files that still hold the starter code's stub
-// (a `not_implemented();` call in GLSL, `throw NotImplemented(` in C++), by
-// name, in file order.
-std::vector<std::string> unimplementedFunctions(const std::string& stageFolder);
-
 class RenderEngine;
 class Volume;
 struct Scene;
@@ -227,30 +224,5 @@ struct Scene;
 // outlive the engine's use of it) and set on `engine`. Throws voxlab::Error
 // for a scene or dataset that does not load.
 Scene gradingSceneFor(const GradedScene& graded, std::map<std::string, Volume>& volumes, RenderEngine& engine);
-
-// If line `i` of a file calls the starter code's GLSL stub
-// (`not_implemented();` alone on its line), the name of the function whose
-// body it is in; else "". The shader preprocessor numbers each such call
-// (PreprocessedShader::stubs), at most kMaxNumberedStubs per program (a
-// set of them travels as the bits of a float).
-std::string stubCallFunction(const std::vector<std::string>& lines, std::size_t i);
-inline constexpr std::size_t kMaxNumberedStubs = 24;
-
-// Whether an image shows the stubs' magenta-and-black checkerboard.
-struct Image;
-bool showsStubPattern(const Image& image);
-// "gradient/: central_difference_gradient(); shading/: phong()", from
-// "stage/function" names (grouped by stage, in their order).
-std::string stubListText(const std::vector<std::string>& stubs);
-// The stubs a render reached, once it shows the checkerboard: the functions
-// whose stub ran for some pixel (RenderEngine::stubsReached). Empty when the
-// image shows no checkerboard.
-std::vector<std::string> stubsReached(RenderEngine& engine, const Scene& scene, const Image& image, int maxSide = 0);
-
-// One line naming `stubs` (by stage folder), the functions the checkerboard
-// stands for, and pointing to `voxlab check`; empty when there are none. The
-// viewer shows it over the image while the checkerboard is on screen,
-// `voxlab render` prints it.
-std::string missingFunctionsNotice(const std::vector<std::string>& stubs);
 
 }  // namespace voxlab

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "voxlab/empty_space.h"
+#include "voxlab/gl_object.h"
 #include "voxlab/image.h"
 #include "voxlab/renderer.h"
 #include "voxlab/scene.h"
@@ -88,7 +89,7 @@ public:
     // Renders into the engine's own float framebuffer and leaves it there
     // (the viewer blits it); offscreenFramebuffer() names it.
     void renderOffscreen(const Scene& scene);
-    unsigned offscreenFramebuffer() const { return fbo_; }
+    unsigned offscreenFramebuffer() const { return target_.framebuffer; }
     Image readBack() const;
     // A tile of the image (x, y, width, height in framebuffer pixels, y up):
     // the next renders shade only these pixels and leave the others as they
@@ -129,7 +130,7 @@ public:
     std::vector<std::string> stubsReached(const Scene& scene, int maxSide = 0);
     // The colour texture of the offscreen framebuffer (RGBA32F), for
     // compositing two engines' images (the viewer's split view).
-    unsigned offscreenTexture() const { return colorTexture_; }
+    unsigned offscreenTexture() const { return target_.color; }
     const std::string& implementationRoot() const { return implementationRoot_; }
 
     // The samples `scene` takes in all, summed over its pixels: the scene is
@@ -168,7 +169,7 @@ public:
 private:
     // One transfer-function table on the GPU and what it was baked from.
     struct TransferFunctionSlot {
-        unsigned texture = 0;
+        GlTexture texture;
         TransferFunctionTable table;
         std::vector<ControlPoint> points;
         glm::dvec2 range{0.0};
@@ -192,7 +193,7 @@ private:
     };
     // A texture made by a Precomputation, and what it was made from.
     struct PrecomputedTexture {
-        unsigned texture = 0;
+        GlTexture texture;
         glm::ivec3 size{0};
         int channels = 0;
         std::string key;
@@ -205,6 +206,12 @@ private:
     unsigned sliceStack(int axis);
     void setSceneUniforms(const ShaderProgram& prog, const Scene& scene) const;
     void draw(const Scene& scene, const Pass& pass);
+    // The parts of draw() (render_engine.cpp).
+    PassInputs passInputs(const Scene& scene, const Pass& pass, std::optional<TransferFunction>& fallback) const;
+    void bindTables(const Scene& scene, const Pass& pass, const PassInputs& inputs);
+    void drawObjectOrder(const Scene& scene, const Pass& pass, const PassInputs& inputs, const ShaderProgram& prog,
+                         const ShaderConstants& constants);
+    void drawFullScreen(const Pass& pass, const ShaderProgram& prog);
     ShaderConstants switchesFor(const Scene& scene, const Pass& pass, const PassInputs& inputs, bool skipping,
                                 BrickCombine combine) const;
     void setPassUniforms(const ShaderProgram& prog, const Scene& scene, const Pass& pass, const PassInputs& inputs);
@@ -222,7 +229,8 @@ private:
     void ensureLayers(int width, int height);
     // Adds a program's files to lastRenderSources_ (every program a render used).
     void noteSources(const ShaderProgram& prog);
-    // The two float targets of multi-pass object-order renderers (shear-warp).
+    // The two float targets of multi-pass object-order renderers (shear-warp),
+    // both of one size.
     void ensureIntermediate(int target, glm::ivec2 size);
     // Empty-space skipping (render_engine_bricks.cpp): builds the brick grid
     // once per volume, marks the bricks `rule` lets rays skip, and binds the
@@ -243,16 +251,16 @@ private:
     std::unique_ptr<VolumeTextures> volumeTextures_;
     std::size_t defaultBudget_ = 0;
     int maxTextureSize_ = 0;
-    unsigned vao_ = 0;
-    unsigned fbo_ = 0, colorTexture_ = 0;
+    GlVertexArray vao_;
+    FloatTarget target_;  // the image
     int fboWidth_ = 0, fboHeight_ = 0;
     std::optional<glm::ivec4> tile_;
     bool tiled_ = false;
     float lineWidth_ = 1.0f;
     // Two layers (or a bricked render's state, taking turns) and a bricked
     // render's sample counts.
-    unsigned layerFbo_[3] = {0, 0, 0}, layerTexture_[3] = {0, 0, 0};
-    unsigned intermediateFbo_[2] = {0, 0}, intermediateTexture_[2] = {0, 0};
+    FloatTarget layers_[3];
+    FloatTarget intermediate_[2];
     glm::ivec2 intermediateSize_[2] = {glm::ivec2(0), glm::ivec2(0)};
     int layerWidth_ = 0, layerHeight_ = 0;
     float valueScale_ = 1.0f, valueOffset_ = 0.0f;
@@ -262,35 +270,37 @@ private:
     std::vector<std::string> mainProgramStubs_;  // the numbered stubs of the last single-pass draw's program
     bool reportingStubs_ = false;
     int programsNoted_ = 0;
-    unsigned stubFbo_ = 0, stubTexture_ = 0;
+    FloatTarget stubTarget_;
     int stubWidth_ = 0, stubHeight_ = 0;
     std::map<std::string, std::unique_ptr<ShaderProgram>> previousPrograms_;  // before the last reload
     std::string shaderError_;
     TransferFunctionSlot tf_[2];  // the scene's, and the cutting plane's other side
     // The gradient volume on the GPU: for which volume (by upload count) and estimator.
-    unsigned gradientTexture_ = 0;
+    GlTexture gradientTexture_;
     std::optional<GradientEstimator> gradientEstimator_;
     unsigned long volumeGeneration_ = 0, gradientGeneration_ = 0;
-    unsigned bsplineTexture_ = 0;
+    GlTexture bsplineTexture_;
     unsigned long bsplineGeneration_ = 0;
     // Object-order drawing: a vertex buffer for proxy geometry, and the
     // volume as three stacks of 2D slices (built on first use per volume).
-    unsigned geometryVao_ = 0, geometryVbo_ = 0, geometryNormalVbo_ = 0;
-    unsigned pointVao_ = 0, pointVbo_ = 0;  // instanced squares (splats): a position and a value each
-    unsigned sliceStacks_[3] = {0, 0, 0};
+    GlVertexArray geometryVao_;
+    GlBuffer geometryVbo_, geometryNormalVbo_;
+    GlVertexArray pointVao_;
+    GlBuffer pointVbo_;  // instanced squares (splats): a position and a value each
+    GlTexture sliceStacks_[3];
     unsigned long sliceStackGeneration_[3] = {0, 0, 0};
     // Empty-space skipping: the grid, the volume it belongs to, and its
     // texture (min, max, visible, 0 per brick) as last uploaded.
     std::unique_ptr<BrickGrid> bricks_;
     unsigned long bricksGeneration_ = 0;
-    unsigned brickTexture_ = 0;
+    GlTexture brickTexture_;
     std::vector<glm::vec4> brickTexels_;
     bool countingSamples_ = false;
     bool countingByUniform_ = false;
     // Precomputed textures, per transfer-function slot (the two sides of a
     // cutting plane) and index, and their framebuffer.
     std::map<std::pair<int, int>, PrecomputedTexture> precomputed_;
-    unsigned precomputeFbo_ = 0;
+    GlFramebuffer precomputeFbo_;
     unsigned long shaderGeneration_ = 0;
     // The scene's label map and second volume (scene_volumes.h).
     std::unique_ptr<SceneVolumes> sceneVolumes_;

@@ -94,7 +94,8 @@ public:
 
     // Multi-pass drawing (shear-warp's intermediate image): full-screen
     // passes of other fragment shaders, into one of two float RGBA targets
-    // of any size, read back as textures, then into the pass's own output.
+    // (the two have one size: asking one for another size makes both anew,
+    // empty), read back as textures, then into the pass's own output.
     // useFullScreenProgram compiles the shader (with voxlab/fullscreen.vert)
     // as the renderer's own is, sets the pass's uniforms, binds it and makes
     // it program(). drawToTarget draws into target 0 or 1 (no blending);

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "voxlab/gl_object.h"
 #include "voxlab/label_map.h"
 #include "voxlab/scene.h"
 #include "voxlab/shader.h"
@@ -82,8 +83,8 @@ private:
     std::string secondTfKey_;
     TransferFunctionTable secondTable_;
 
-    unsigned labelTexture_ = 0, rowTexture_ = 0, labelTfTexture_ = 0, distanceTexture_ = 0,
-             distanceTfTexture_ = 0, secondTexture_ = 0, secondTfTexture_ = 0;
+    GlTexture labelTexture_, rowTexture_, labelTfTexture_, distanceTexture_, distanceTfTexture_, secondTexture_,
+        secondTfTexture_;
 };
 
 // Uploads `volume` as a 3D texture in its native precision (R8, R16, R32F;

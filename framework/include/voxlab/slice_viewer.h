@@ -28,6 +28,7 @@
 
 #include <imgui.h>
 
+#include "voxlab/gl_object.h"
 #include "voxlab/camera.h"
 #include "voxlab/orthogonal_slices.h"
 #include "voxlab/volume.h"
@@ -73,7 +74,7 @@ public:
 
 private:
     struct View {
-        unsigned texture = 0;
+        GlTexture texture;
         // What the texture holds; uploaded again when any of these differs.
         const void* data = nullptr;
         glm::ivec3 dims{0};
@@ -84,7 +85,16 @@ private:
     };
 
     void upload(View& view, const Volume& volume, int axis, int index, glm::dvec2 window);
-    bool drawView(int axis, ImVec2 cellMin, ImVec2 cellMax, float scale, const Volume& volume, SliceCursor* cursor);
+    // The parts of drawContents (slice_viewer.cpp).
+    void windowControls(SliceCursor* cursor, const glm::dvec2& range, double span);
+    void placeView(int axis, const Volume& volume, float scale, ImVec2 cellMin, ImVec2 cellMax);
+    void viewInput(int axis, const glm::ivec3& dims, SliceCursor* cursor, const glm::dvec2& range);
+    void drawView(ImDrawList* list, int axis, const Volume& volume, const SliceCursor& cursor);
+    void readout(const Volume& volume, const SliceCursor& cursor, ImVec2 at);
+    // The screen row of an image row: coronal and sagittal rows run against
+    // the image's when z grows downwards (zUp off).
+    int displayRow(const glm::ivec3& dims, int axis, int row) const;
+    bool shown(int axis) const { return enlarged < 0 || axis == enlarged; }
 
     View views_[3];
     std::optional<glm::ivec3> hovered_;

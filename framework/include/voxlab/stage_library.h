@@ -21,16 +21,26 @@
 
 namespace voxlab {
 
-// One pointer per C++ stage function (their contracts: proxy_geometry.h,
-// marching_cubes.h). Adding one: a member here, a line in
-// forEachStageFunction (stage_library.cpp) and in stage_exports.cpp.
+// The one list of the C++ stage functions (their contracts: proxy_geometry.h,
+// marching_cubes.h, splatting.h, shear_warp.h): X(name, return type,
+// parameter types). From it come the table's members, the linked-in table,
+// the stubs that throw NotImplemented (stage_library.cpp), and the weak
+// declarations and exports every stage library carries
+// (framework/stage_library/stage_exports.cpp). Adding a function: a line
+// here, and its call across the stage host's pipe (stage_host.cpp).
+#define VOXLAB_CPP_STAGE_FUNCTIONS(X)                                                         \
+    X(planeBoxPolygon, std::vector<glm::dvec3>, (glm::dvec3, double, glm::dvec3, glm::dvec3)) \
+    X(chooseSliceAxis, int, (glm::dvec3))                                                    \
+    X(cubeCase, int, (const double*, double))                                                \
+    X(edgeCrossing, glm::dvec3, (glm::dvec3, glm::dvec3, double, double, double))            \
+    X(splatOrder, SplatOrder, (glm::dvec3))                                                  \
+    X(factorShearWarp, ShearWarp, (const Camera&, glm::ivec3, glm::dvec3))
+
+// One pointer per C++ stage function.
 struct CppStages {
-    std::vector<glm::dvec3> (*planeBoxPolygon)(glm::dvec3 normal, double offset, glm::dvec3 lo, glm::dvec3 hi);
-    int (*chooseSliceAxis)(glm::dvec3 viewDirection);
-    int (*cubeCase)(const double values[8], double isovalue);
-    glm::dvec3 (*edgeCrossing)(glm::dvec3 a, glm::dvec3 b, double va, double vb, double isovalue);
-    SplatOrder (*splatOrder)(glm::dvec3 viewDirection);
-    ShearWarp (*factorShearWarp)(const Camera& camera, glm::ivec3 dims, glm::dvec3 spacing);
+#define VOXLAB_STAGE_MEMBER(name, Result, Parameters) Result(*name) Parameters = nullptr;
+    VOXLAB_CPP_STAGE_FUNCTIONS(VOXLAB_STAGE_MEMBER)
+#undef VOXLAB_STAGE_MEMBER
 };
 
 // The table in use: the linked-in stages unless a library was loaded.

@@ -13,7 +13,7 @@
 
 #include "../io/line_scan.h"
 #include "voxlab/gl_context.h"
-#include "voxlab/grading.h"
+#include "voxlab/stub_text.h"
 #include "voxlab/project_root.h"
 #include "voxlab_gl.h"
 

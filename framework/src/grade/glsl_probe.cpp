@@ -47,20 +47,16 @@ private:
     GLint program_ = 0, vertexArray_ = 0, activeTexture_ = GL_TEXTURE0;
 };
 
-// GL names deleted on every path out of run().
+// The GL objects of one run(), deleted on every path out of it.
 struct GlObjects {
-    std::vector<GLuint> textures, framebuffers, vertexArrays;
-    ~GlObjects() {
-        if (!textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
-        if (!framebuffers.empty()) glDeleteFramebuffers(GLsizei(framebuffers.size()), framebuffers.data());
-        if (!vertexArrays.empty()) glDeleteVertexArrays(GLsizei(vertexArrays.size()), vertexArrays.data());
-    }
+    std::vector<GlTexture> textures;
+    std::vector<GlFramebuffer> framebuffers;
+    std::vector<GlVertexArray> vertexArrays;
 };
 
 GLuint floatTexture(GlObjects& objects, int width, int height, const float* texels) {
-    GLuint texture = 0;
-    glGenTextures(1, &texture);
-    objects.textures.push_back(texture);
+    objects.textures.push_back(GlTexture::make());
+    const GLuint texture = objects.textures.back();
     glBindTexture(GL_TEXTURE_2D, texture);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, texels);
@@ -91,17 +87,14 @@ GlslProbe::GlslProbe(const std::string& implementationRoot, const std::string& f
                      const ShaderConstants& constants)
     : program_(probeLibrary(implementationRoot, fragmentName), "voxlab/fullscreen.vert", fragmentName, constants) {}
 
-GlslProbe::~GlslProbe() {
-    if (volumeTexture_) glDeleteTextures(1, &volumeTexture_);
-    if (tfTexture_) glDeleteTextures(1, &tfTexture_);
-}
+GlslProbe::~GlslProbe() = default;
 
 void GlslProbe::setTransferFunction(const std::vector<glm::vec4>& entries, glm::vec2 range) {
     if (entries.size() < 2 || entries.size() > 4096) throw Error("probe transfer function: 2 to 4096 entries");
     GLint activeTexture = GL_TEXTURE0, program = 0;
     glGetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture);
     glGetIntegerv(GL_CURRENT_PROGRAM, &program);
-    if (!tfTexture_) glGenTextures(1, &tfTexture_);
+    tfTexture_.ensure();
     glActiveTexture(GL_TEXTURE0 + kTransferFunctionUnit);
     glBindTexture(GL_TEXTURE_2D, tfTexture_);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
@@ -125,7 +118,7 @@ void GlslProbe::setVolume(const ProbeVolume& volume) {
                     std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z) + " voxels");
     GLint activeTexture = GL_TEXTURE0;
     glGetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture);
-    if (!volumeTexture_) glGenTextures(1, &volumeTexture_);
+    volumeTexture_.ensure();
     glActiveTexture(GL_TEXTURE0 + kVolumeUnit);
     glBindTexture(GL_TEXTURE_3D, volumeTexture_);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
@@ -189,18 +182,16 @@ ProbeResults GlslProbe::run(int cases, const std::vector<std::vector<glm::vec4>>
         program_.set(("u_probe_input[" + std::to_string(k) + "]").c_str(), kFirstInputUnit + int(k));
     }
 
-    GLuint framebuffer = 0, vertexArray = 0;
-    glGenFramebuffers(1, &framebuffer);
-    objects.framebuffers.push_back(framebuffer);
+    objects.framebuffers.push_back(GlFramebuffer::make());
+    const GLuint framebuffer = objects.framebuffers.back();
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     for (int t = 0; t < kTargets; ++t)
         glFramebufferTexture2D(GL_FRAMEBUFFER, attachments[t], GL_TEXTURE_2D, targets[t], 0);
     glDrawBuffers(kTargets, attachments);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw Error("OpenGL: the probe framebuffer is not complete");
-    glGenVertexArrays(1, &vertexArray);
-    objects.vertexArrays.push_back(vertexArray);
-    glBindVertexArray(vertexArray);
+    objects.vertexArrays.push_back(GlVertexArray::make());
+    glBindVertexArray(objects.vertexArrays.back());
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_SCISSOR_TEST);

@@ -19,6 +19,7 @@
 
 #include <glm/glm.hpp>
 
+#include "voxlab/gl_object.h"
 #include "voxlab/shader.h"
 
 namespace voxlab::probe {
@@ -67,7 +68,7 @@ public:
 
 private:
     ShaderProgram program_;
-    unsigned volumeTexture_ = 0, tfTexture_ = 0;
+    GlTexture volumeTexture_, tfTexture_;
 };
 
 }  // namespace voxlab::probe

@@ -14,9 +14,9 @@ EngineDrawContext::EngineDrawContext(RenderEngine& engine, const Scene& scene, c
     : engine_(engine), scene_(scene), camera_(camera), program_(&program), pass_(pass), inputs_(inputs),
       constants_(constants) {
     if (!engine_.geometryVao_) {
-        glGenVertexArrays(1, &engine_.geometryVao_);
-        glGenBuffers(1, &engine_.geometryVbo_);
-        glGenBuffers(1, &engine_.geometryNormalVbo_);
+        engine_.geometryVao_ = GlVertexArray::make();
+        engine_.geometryVbo_ = GlBuffer::make();
+        engine_.geometryNormalVbo_ = GlBuffer::make();
         glBindVertexArray(engine_.geometryVao_);
         glBindBuffer(GL_ARRAY_BUFFER, engine_.geometryVbo_);
         glEnableVertexAttribArray(0);
@@ -87,8 +87,8 @@ void EngineDrawContext::drawLines(const std::vector<glm::vec3>& vertices) {
 void EngineDrawContext::drawInstancedSquares(const std::vector<glm::vec4>& instances) {
     if (instances.empty()) return;
     if (!engine_.pointVao_) {  // its own layout: 4 floats per instance
-        glGenVertexArrays(1, &engine_.pointVao_);
-        glGenBuffers(1, &engine_.pointVbo_);
+        engine_.pointVao_ = GlVertexArray::make();
+        engine_.pointVbo_ = GlBuffer::make();
         glBindVertexArray(engine_.pointVao_);
         glBindBuffer(GL_ARRAY_BUFFER, engine_.pointVbo_);
         glEnableVertexAttribArray(0);
@@ -129,7 +129,7 @@ void EngineDrawContext::drawToTarget(int target, glm::ivec2 size) {
     if (target < 0 || target > 1 || size.x < 1 || size.y < 1 || size.x > 16384 || size.y > 16384)
         throw Error("renderer '" + scene_.renderer + "': an intermediate target must be 0 or 1, 1..16384 pixels a side");
     engine_.ensureIntermediate(target, size);
-    glBindFramebuffer(GL_FRAMEBUFFER, engine_.intermediateFbo_[target]);
+    glBindFramebuffer(GL_FRAMEBUFFER, engine_.intermediate_[target].framebuffer);
     glViewport(0, 0, size.x, size.y);
     glDisable(GL_BLEND);  // a pass writes its target whole
 }
@@ -140,10 +140,10 @@ void EngineDrawContext::clearTarget(glm::vec4 colour) {
 }
 
 void EngineDrawContext::bindTargetTexture(int target, int unit) {
-    if (target < 0 || target > 1 || !engine_.intermediateTexture_[target])
+    if (target < 0 || target > 1 || !engine_.intermediate_[target].color)
         throw Error("renderer '" + scene_.renderer + "': intermediate target " + std::to_string(target) + " was never drawn");
     glActiveTexture(GL_TEXTURE0 + GLenum(unit));
-    glBindTexture(GL_TEXTURE_2D, engine_.intermediateTexture_[target]);
+    glBindTexture(GL_TEXTURE_2D, engine_.intermediate_[target].color);
 }
 
 void EngineDrawContext::drawToOutput() {

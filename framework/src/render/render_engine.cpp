@@ -6,7 +6,7 @@
 
 #include "voxlab/bspline.h"
 #include "voxlab/error.h"
-#include "voxlab/grading.h"
+#include "voxlab/stub_text.h"
 #include "voxlab/scene_volumes.h"
 #include "engine_draw_context.h"
 #include "engine_internal.h"
@@ -44,61 +44,6 @@ TransferFunction2D fallbackTransferFunction2D(glm::dvec2 window) {
     return TransferFunction2D({w});
 }
 
-// A float colour target with a depth buffer (for the object-order
-// renderers that test depth: the mesh).
-void createFloatTarget(unsigned* fbo, unsigned* texture, int width, int height) {
-    // A new size gets new objects: Mesa's softpipe went on sampling a
-    // re-specified texture's old tiles (shear-warp's intermediate image after
-    // a scene with another size: random colours).
-    if (*fbo) {
-        glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
-        GLint depth = 0;
-        glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
-                                              GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &depth);
-        const GLuint renderbuffer = GLuint(depth);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        if (renderbuffer) glDeleteRenderbuffers(1, &renderbuffer);
-        glDeleteFramebuffers(1, fbo);
-        glDeleteTextures(1, texture);
-    }
-    glGenFramebuffers(1, fbo);
-    glGenTextures(1, texture);
-    // A float target: the image is read back unrounded, and the one rounding
-    // to 8 bits happens on the CPU by the README's rule.
-    glBindTexture(GL_TEXTURE_2D, *texture);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *texture, 0);
-    GLint depth = 0;  // the renderbuffer attached last time, resized with the colour
-    glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME,
-                                          &depth);
-    GLuint renderbuffer = GLuint(depth);
-    if (!renderbuffer) glGenRenderbuffers(1, &renderbuffer);
-    glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, renderbuffer);
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw Error("OpenGL: the float framebuffer (" + std::to_string(width) + "x" + std::to_string(height) +
-                    ") is not complete");
-}
-
-// Deletes a target made by createFloatTarget, its depth buffer included.
-void deleteFloatTarget(unsigned fbo, unsigned texture) {
-    if (fbo) {
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-        GLint depth = 0;
-        glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
-                                              GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &depth);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        const GLuint renderbuffer = GLuint(depth);
-        if (renderbuffer) glDeleteRenderbuffers(1, &renderbuffer);
-        glDeleteFramebuffers(1, &fbo);
-    }
-    if (texture) glDeleteTextures(1, &texture);
-}
-
 }  // namespace
 
 namespace {
@@ -124,39 +69,23 @@ RenderEngine::RenderEngine(std::string implementationRoot)
     // Entry shaders the renderers make themselves (ray-value stages).
     for (const auto& renderer : rendererRegistry().all())
         for (const auto& [name, text] : renderer->generatedShaders()) library_.addGenerated(name, text);
-    glGenVertexArrays(1, &vao_);  // core profile: drawing needs a bound VAO
+    vao_ = GlVertexArray::make();  // core profile: drawing needs a bound VAO
     volumeTextures_ = std::make_unique<VolumeTextures>();
     glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxTextureSize_);
     defaultBudget_ = driverGpuMemoryBudget();
-    glGenTextures(1, &gradientTexture_);
-    glGenTextures(1, &bsplineTexture_);
-    for (TransferFunctionSlot& slot : tf_) glGenTextures(1, &slot.texture);
+    gradientTexture_ = GlTexture::make();
+    bsplineTexture_ = GlTexture::make();
+    for (TransferFunctionSlot& slot : tf_) slot.texture = GlTexture::make();
     sceneVolumes_ = std::make_unique<SceneVolumes>();
     checkGlError("creating the render engine");
 }
 
+// The GL objects go with their owners (gl_object.h), after the programs
+// and the textures that hold volumes.
 RenderEngine::~RenderEngine() {
     programs_.clear();
     sceneVolumes_.reset();
-    glDeleteVertexArrays(1, &vao_);
     volumeTextures_.reset();
-    glDeleteTextures(1, &gradientTexture_);
-    glDeleteTextures(1, &bsplineTexture_);
-    for (TransferFunctionSlot& slot : tf_) glDeleteTextures(1, &slot.texture);
-    deleteFloatTarget(fbo_, colorTexture_);
-    if (stubFbo_) deleteFloatTarget(stubFbo_, stubTexture_);
-    for (int i = 0; i < 3; ++i) deleteFloatTarget(layerFbo_[i], layerTexture_[i]);
-    for (int i = 0; i < 2; ++i) deleteFloatTarget(intermediateFbo_[i], intermediateTexture_[i]);
-    for (unsigned& t : sliceStacks_)
-        if (t) glDeleteTextures(1, &t);
-    if (geometryVao_) glDeleteVertexArrays(1, &geometryVao_);
-    if (geometryVbo_) glDeleteBuffers(1, &geometryVbo_);
-    if (geometryNormalVbo_) glDeleteBuffers(1, &geometryNormalVbo_);
-    if (pointVao_) glDeleteVertexArrays(1, &pointVao_);
-    if (pointVbo_) glDeleteBuffers(1, &pointVbo_);
-    if (brickTexture_) glDeleteTextures(1, &brickTexture_);
-    for (auto& [index, made] : precomputed_) glDeleteTextures(1, &made.texture);
-    if (precomputeFbo_) glDeleteFramebuffers(1, &precomputeFbo_);
 }
 
 // A volume beyond one texture's size or the budget is cut into bricks
@@ -276,26 +205,38 @@ void RenderEngine::noteSources(const ShaderProgram& prog) {
 }
 
 void RenderEngine::ensureTarget(int width, int height) {
-    if (fbo_ && width == fboWidth_ && height == fboHeight_) return;
-    createFloatTarget(&fbo_, &colorTexture_, width, height);
+    if (target_.framebuffer && width == fboWidth_ && height == fboHeight_) return;
+    target_.make(width, height);
     fboWidth_ = width, fboHeight_ = height;
 }
 
+// Both targets are made anew together when the size changes, every new
+// object before any old one goes: Mesa's softpipe caches the tiles of a
+// texture a unit sampled by the address of its storage, and a target made
+// where the other target's freed storage was showed that one's tiles
+// (shear-warp after a scene of another size in one process: stripes of
+// garbage over 13 % and 43 % of two grading scenes' pixels).
 void RenderEngine::ensureIntermediate(int target, glm::ivec2 size) {
-    if (intermediateFbo_[target] && intermediateSize_[target] == size) return;
-    createFloatTarget(&intermediateFbo_[target], &intermediateTexture_[target], size.x, size.y);
-    // Read back with bilinear filtering (the warp), clamped to transparent edges by the reader.
-    glBindTexture(GL_TEXTURE_2D, intermediateTexture_[target]);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    intermediateSize_[target] = size;
+    if (intermediate_[target].made() && intermediateSize_[target] == size) return;
+    FloatTarget next[2];
+    for (FloatTarget& t : next) {
+        t.make(size.x, size.y);
+        // Read back with bilinear filtering (the warp), clamped to transparent edges by the reader.
+        glBindTexture(GL_TEXTURE_2D, t.color);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    for (int i = 0; i < 2; ++i) {
+        intermediate_[i] = std::move(next[i]);
+        intermediateSize_[i] = size;
+    }
 }
 
 void RenderEngine::ensureLayers(int width, int height) {
-    if (layerFbo_[0] && width == layerWidth_ && height == layerHeight_) return;
-    for (int i = 0; i < 3; ++i) createFloatTarget(&layerFbo_[i], &layerTexture_[i], width, height);
+    if (layers_[0].framebuffer && width == layerWidth_ && height == layerHeight_) return;
+    for (FloatTarget& layer : layers_) layer.make(width, height);
     layerWidth_ = width, layerHeight_ = height;
 }
 
@@ -413,10 +354,12 @@ ShaderConstants RenderEngine::switchesFor(const Scene& scene, const Pass& pass, 
     return constants;
 }
 
-void RenderEngine::draw(const Scene& scene, const Pass& pass) {
+// The transfer functions a pass reads: the pass's own, or a fallback over
+// the scene's window (kept in `fallback`) for a renderer that needs one.
+RenderEngine::PassInputs RenderEngine::passInputs(const Scene& scene, const Pass& pass,
+                                                  std::optional<TransferFunction>& fallback) const {
     const Renderer& renderer = *pass.renderer;
     const glm::dvec2 window = scene.window.value_or(volume_->valueRange());
-    std::optional<TransferFunction> fallback;
     PassInputs inputs;
     inputs.tf = pass.transferFunction;
     if (!inputs.tf && renderer.needsTransferFunction()) {
@@ -427,6 +370,64 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
         inputs.widgets = scene.transferFunction2D->widgets();
     else if (renderer.needsTransferFunction2D())
         inputs.widgets = fallbackTransferFunction2D(window).widgets();
+    return inputs;
+}
+
+// The transfer-function table, the gradients and the B-spline coefficients,
+// uploaded when they changed and bound to their units.
+void RenderEngine::bindTables(const Scene& scene, const Pass& pass, const PassInputs& inputs) {
+    TransferFunctionSlot& slot = tf_[pass.slot];
+    if (inputs.tf) uploadTransferFunction(slot, *inputs.tf);
+    glActiveTexture(GL_TEXTURE0 + kTransferFunctionUnit);
+    glBindTexture(GL_TEXTURE_2D, slot.texture);
+    if (const auto estimator = pass.renderer->precomputedGradients(pass.values)) uploadGradients(*estimator);
+    glActiveTexture(GL_TEXTURE0 + kGradientUnit);
+    glBindTexture(GL_TEXTURE_3D, gradientTexture_);
+    if (scene.interpolation == Interpolation::BSpline) uploadBsplineCoefficients();
+    glActiveTexture(GL_TEXTURE0 + kBsplineUnit);
+    glBindTexture(GL_TEXTURE_3D, bsplineTexture_);
+}
+
+// An object-order renderer: its geometry laid back to front over the
+// background (or, for a cutting-plane layer, over nothing) in premultiplied
+// alpha.
+void RenderEngine::drawObjectOrder(const Scene& scene, const Pass& pass, const PassInputs& inputs,
+                                   const ShaderProgram& prog, const ShaderConstants& constants) {
+    const Camera cam = Camera::make(scene.camera, volume_->extent(), scene.width, scene.height);
+    prog.set("u_clip_from_world", cam.clipFromWorld());
+    const glm::vec4 under = pass.layer || reportingStubs_ ? glm::vec4(0.0f) : glm::vec4(scene.background, 1.0f);
+    glClearColor(under.r, under.g, under.b, under.a);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    EngineDrawContext context(*this, scene, cam, prog, pass, inputs, constants);
+    pass.renderer->draw(context, pass.values);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    // Drawn with its one program (not shear-warp's passes), whose opaque
+    // stub pixels land as they are: they can say which stubs ran.
+    if (programsNoted_ == 1 && !pass.layer) mainProgramStubs_ = prog.stubs();
+}
+
+// A ray caster's one full-screen triangle (only the tile's pixels when a
+// tile is set: the others keep what they had).
+void RenderEngine::drawFullScreen(const Pass& pass, const ShaderProgram& prog) {
+    glDisable(GL_BLEND);
+    glBindVertexArray(vao_);
+    if (tile_ && !pass.layer) {
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(tile_->x, tile_->y, tile_->z, tile_->w);
+        tiled_ = true;
+    }
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_SCISSOR_TEST);
+    if (!pass.layer) mainProgramStubs_ = prog.stubs();  // one pass: its pixels can say which stubs ran
+}
+
+void RenderEngine::draw(const Scene& scene, const Pass& pass) {
+    const Renderer& renderer = *pass.renderer;
+    std::optional<TransferFunction> fallback;
+    const PassInputs inputs = passInputs(scene, pass, fallback);
     // A label map and a second volume (scene_volumes.h): loaded, checked and
     // uploaded before the program is chosen, so that a bad file fails first.
     // (The other side of a cutting plane may be drawn by a renderer that
@@ -450,16 +451,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     noteSources(prog);
 
     if (combine == BrickCombine::None) bindVolumeBrick(0, prog, scene);
-    TransferFunctionSlot& slot = tf_[pass.slot];
-    if (inputs.tf) uploadTransferFunction(slot, *inputs.tf);
-    glActiveTexture(GL_TEXTURE0 + kTransferFunctionUnit);
-    glBindTexture(GL_TEXTURE_2D, slot.texture);
-    if (const auto estimator = renderer.precomputedGradients(pass.values)) uploadGradients(*estimator);
-    glActiveTexture(GL_TEXTURE0 + kGradientUnit);
-    glBindTexture(GL_TEXTURE_3D, gradientTexture_);
-    if (scene.interpolation == Interpolation::BSpline) uploadBsplineCoefficients();
-    glActiveTexture(GL_TEXTURE0 + kBsplineUnit);
-    glBindTexture(GL_TEXTURE_3D, bsplineTexture_);
+    bindTables(scene, pass, inputs);
 
     // Precomputed textures first: they draw into framebuffers of their own.
     constants["u_skipping"] = 0;
@@ -469,7 +461,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
 
     // With a label map a brick is empty only if no label's function shows it.
     const TransferFunctionTable* table =
-        scene.labels ? &sceneVolumes_->labelUnionTable() : inputs.tf ? &slot.table : nullptr;
+        scene.labels ? &sceneVolumes_->labelUnionTable() : inputs.tf ? &tf_[pass.slot].table : nullptr;
     const auto prepare = [&](const ShaderProgram& p) {
         p.use();
         setPassUniforms(p, scene, pass, inputs);
@@ -483,43 +475,18 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
 
     glDisable(GL_DEPTH_TEST);
     if (renderer.objectOrder()) {
-        // Slices are laid back to front over the background (or, for a
-        // cutting-plane layer, over nothing) in premultiplied alpha.
-        const Camera cam = Camera::make(scene.camera, volume_->extent(), scene.width, scene.height);
-        prog.set("u_clip_from_world", cam.clipFromWorld());
-        const glm::vec4 under = pass.layer || reportingStubs_ ? glm::vec4(0.0f) : glm::vec4(scene.background, 1.0f);
-        glClearColor(under.r, under.g, under.b, under.a);
-        glClear(GL_COLOR_BUFFER_BIT);
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-        EngineDrawContext context(*this, scene, cam, prog, pass, inputs, constants);
-        renderer.draw(context, pass.values);
-        glDisable(GL_BLEND);
-        glDisable(GL_DEPTH_TEST);
-        // Drawn with its one program (not shear-warp's passes), whose opaque
-        // stub pixels land as they are: they can say which stubs ran.
-        if (programsNoted_ == 1 && !pass.layer) mainProgramStubs_ = prog.stubs();
+        drawObjectOrder(scene, pass, inputs, prog, constants);
     } else if (combine != BrickCombine::None) {
         constants["u_skipping"] = skipping ? 1 : 0;
         drawBricked(scene, pass, inputs, prog, constants, combine, prepare);
     } else {
-        glDisable(GL_BLEND);
-        glBindVertexArray(vao_);
-        if (tile_ && !pass.layer) {  // only these pixels: the others keep what they had
-            glEnable(GL_SCISSOR_TEST);
-            glScissor(tile_->x, tile_->y, tile_->z, tile_->w);
-            tiled_ = true;
-        }
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glDisable(GL_SCISSOR_TEST);
-        if (!pass.layer) mainProgramStubs_ = prog.stubs();  // one pass: its pixels can say which stubs ran
+        drawFullScreen(pass, prog);
     }
     checkGlDraw(("drawing with renderer '" + renderer.id() + "'").c_str());
 }
 
 unsigned RenderEngine::sliceStack(int axis) {
     if (sliceStacks_[axis] && sliceStackGeneration_[axis] == volumeGeneration_) return sliceStacks_[axis];
-    if (!sliceStacks_[axis]) glGenTextures(1, &sliceStacks_[axis]);
     // Layer k of the stack for `axis` is the voxel layer at index k along it;
     // within a layer, the other two axes in cyclic order (axis+1, axis+2).
     const Volume& v = *volume_;
@@ -535,7 +502,10 @@ unsigned RenderEngine::sliceStack(int axis) {
                 ijk[a] = k, ijk[b] = i, ijk[c] = j;
                 texels[out++] = float(v.value(ijk.x, ijk.y, ijk.z));
             }
-    glBindTexture(GL_TEXTURE_2D_ARRAY, sliceStacks_[axis]);
+    // A new texture, filled before the old one goes (gl_object.h: softpipe
+    // takes new storage where a deleted texture's was for that texture).
+    GlTexture stack = GlTexture::make();
+    glBindTexture(GL_TEXTURE_2D_ARRAY, stack);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32F, n[b], n[c], n[a], 0, GL_RED, GL_FLOAT, texels.data());
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -543,6 +513,7 @@ unsigned RenderEngine::sliceStack(int axis) {
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     checkGlError("uploading a slice stack");
+    sliceStacks_[axis] = std::move(stack);
     sliceStackGeneration_[axis] = volumeGeneration_;
     return sliceStacks_[axis];
 }
@@ -562,10 +533,10 @@ void RenderEngine::drawCut(const Scene& scene, unsigned framebuffer) {
     positive.transferFunction = scene.transferFunction ? &*scene.transferFunction : nullptr;
     positive.layer = positive.clip = true;
     positive.clipPoint = point, positive.clipNormal = normal;
-    glBindFramebuffer(GL_FRAMEBUFFER, layerFbo_[0]);
+    glBindFramebuffer(GL_FRAMEBUFFER, layers_[0].framebuffer);
     draw(scene, positive);
 
-    glBindFramebuffer(GL_FRAMEBUFFER, layerFbo_[1]);
+    glBindFramebuffer(GL_FRAMEBUFFER, layers_[1].framebuffer);
     if (cut.otherRenderer == "none") {
         glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
         glClear(GL_COLOR_BUFFER_BIT);
@@ -586,7 +557,7 @@ void RenderEngine::drawCut(const Scene& scene, unsigned framebuffer) {
     compose.set("u_clip_normal", normal);
     for (int i = 0; i < 2; ++i) {
         glActiveTexture(GL_TEXTURE0 + kLayerUnit + i);
-        glBindTexture(GL_TEXTURE_2D, layerTexture_[i]);
+        glBindTexture(GL_TEXTURE_2D, layers_[i].color);
     }
     compose.set("u_layer_positive", kLayerUnit);
     compose.set("u_layer_negative", kLayerUnit + 1);
@@ -615,7 +586,7 @@ void RenderEngine::renderTo(const Scene& scene, unsigned framebuffer) {
 
 void RenderEngine::renderOffscreen(const Scene& scene) {
     ensureTarget(scene.width, scene.height);
-    renderTo(scene, fbo_);
+    renderTo(scene, target_.framebuffer);
 }
 
 Image RenderEngine::render(const Scene& scene) {
@@ -653,14 +624,14 @@ std::vector<std::string> RenderEngine::stubsReached(const Scene& given, int maxS
         const double shrink = double(maxSide) / std::max(scene.width, scene.height);
         scene.width = std::max(1, int(scene.width * shrink)), scene.height = std::max(1, int(scene.height * shrink));
     }
-    if (!stubFbo_ || stubWidth_ != scene.width || stubHeight_ != scene.height) {
-        createFloatTarget(&stubFbo_, &stubTexture_, scene.width, scene.height);
+    if (!stubTarget_.framebuffer || stubWidth_ != scene.width || stubHeight_ != scene.height) {
+        stubTarget_.make(scene.width, scene.height);
         stubWidth_ = scene.width, stubHeight_ = scene.height;
     }
     const std::vector<std::string> compiled = lastRenderStubs_;
     reportingStubs_ = true;
     try {
-        renderTo(scene, stubFbo_);
+        renderTo(scene, stubTarget_.framebuffer);
     } catch (...) {
         reportingStubs_ = false;
         throw;
@@ -669,7 +640,7 @@ std::vector<std::string> RenderEngine::stubsReached(const Scene& given, int maxS
     const std::vector<std::string> numbered = mainProgramStubs_;
     if (numbered.empty()) return compiled;  // several passes: their pixels do not say
     std::vector<float> pixels(std::size_t(scene.width) * scene.height * 4);
-    glBindFramebuffer(GL_FRAMEBUFFER, stubFbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, stubTarget_.framebuffer);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glReadPixels(0, 0, scene.width, scene.height, GL_RGBA, GL_FLOAT, pixels.data());
@@ -687,7 +658,7 @@ Image RenderEngine::readBack() const {
     const int width = fboWidth_, height = fboHeight_;
     Image image(width, height);
     std::vector<float> rows(image.rgba.size());
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, target_.framebuffer);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, rows.data());

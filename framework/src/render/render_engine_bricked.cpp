@@ -175,7 +175,7 @@ void RenderEngine::drawBricked(const Scene& scene, const Pass& pass, const PassI
         stateProgram = &program(pass.renderer->vertexShader(), pass.renderer->fragmentShader(), plain);
         prepare(*stateProgram);
         counter = &prog;
-        glBindFramebuffer(GL_FRAMEBUFFER, layerFbo_[2]);
+        glBindFramebuffer(GL_FRAMEBUFFER, layers_[2].framebuffer);
         glViewport(0, 0, scene.width, scene.height);
         const glm::vec4 zero(0.0f);
         glClearBufferfv(GL_COLOR, 0, &zero[0]);
@@ -185,7 +185,7 @@ void RenderEngine::drawBricked(const Scene& scene, const Pass& pass, const PassI
     glm::vec4 start(0.0f);
     if (combine == BrickCombine::Largest) start.x = -3.4e38f;
     if (combine == BrickCombine::Smallest) start.x = 3.4e38f;
-    glBindFramebuffer(GL_FRAMEBUFFER, layerFbo_[0]);
+    glBindFramebuffer(GL_FRAMEBUFFER, layers_[0].framebuffer);
     glViewport(0, 0, scene.width, scene.height);
     glClearBufferfv(GL_COLOR, 0, &start[0]);
     glDisable(GL_BLEND);
@@ -194,7 +194,7 @@ void RenderEngine::drawBricked(const Scene& scene, const Pass& pass, const PassI
     auto drawBrick = [&](const ShaderProgram& p, int b, GLuint fbo) {
         glBindFramebuffer(GL_FRAMEBUFFER, fbo);
         glActiveTexture(GL_TEXTURE0 + kLayerUnit);
-        glBindTexture(GL_TEXTURE_2D, layerTexture_[current]);
+        glBindTexture(GL_TEXTURE_2D, layers_[current].color);
         p.use();
         p.set("u_brick_state", kLayerUnit);
         bindVolumeBrick(b, p, scene);
@@ -204,10 +204,10 @@ void RenderEngine::drawBricked(const Scene& scene, const Pass& pass, const PassI
         if (counter) {
             glEnable(GL_BLEND);
             glBlendFunc(GL_ONE, GL_ONE);
-            drawBrick(*counter, b, layerFbo_[2]);
+            drawBrick(*counter, b, layers_[2].framebuffer);
             glDisable(GL_BLEND);
         }
-        drawBrick(*stateProgram, b, layerFbo_[1 - current]);
+        drawBrick(*stateProgram, b, layers_[1 - current].framebuffer);
         current = 1 - current;
     }
     checkGlDraw(("drawing the bricks with renderer '" + pass.renderer->id() + "'").c_str());
@@ -222,7 +222,7 @@ void RenderEngine::drawBricked(const Scene& scene, const Pass& pass, const PassI
     resolve.use();
     setPassUniforms(resolve, scene, pass, inputs);
     glActiveTexture(GL_TEXTURE0 + kLayerUnit);
-    glBindTexture(GL_TEXTURE_2D, layerTexture_[current]);
+    glBindTexture(GL_TEXTURE_2D, layers_[current].color);
     resolve.set("u_brick_state", kLayerUnit);
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
     glViewport(0, 0, scene.width, scene.height);

@@ -19,7 +19,7 @@ void RenderEngine::bindBricks(const ShaderProgram& prog, const EmptySpaceRule& r
         brickTexels_.assign(bricks_->brickCount(), glm::vec4(0.0f));
         for (std::size_t i = 0; i < brickTexels_.size(); ++i)
             brickTexels_[i] = glm::vec4(bricks_->range[i], -1.0f, 0.0f);  // -1: not yet classified
-        if (!brickTexture_) glGenTextures(1, &brickTexture_);
+        brickTexture_.ensure();
         upload = true;
     }
     std::vector<std::uint8_t> visible;

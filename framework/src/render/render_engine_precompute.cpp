@@ -61,12 +61,11 @@ void RenderEngine::runPrecomputation(const Precomputation& what, int index, cons
     if (made.texture && made.key == key) return;
 
     const ShaderProgram& prog = program("voxlab/fullscreen.vert", what.fragmentShader, constants);
-    if (!precomputeFbo_) glGenFramebuffers(1, &precomputeFbo_);
+    precomputeFbo_.ensure();
     if (!made.texture || made.size != what.size || made.channels != what.channels) {
         // A new texture name each time: a name once bound as a 2D texture
         // cannot become a 3D one (another renderer's texture in this slot).
-        if (made.texture) glDeleteTextures(1, &made.texture);
-        glGenTextures(1, &made.texture);
+        made.texture = GlTexture::make();
         allocate(made.texture, what.size, what.channels);
         made.size = what.size, made.channels = what.channels;
     }

@@ -183,16 +183,12 @@ void uploadTableTexture(unsigned texture, const TransferFunctionTable& table) {
 }
 
 SceneVolumes::SceneVolumes() {
-    for (unsigned* t : {&labelTexture_, &rowTexture_, &labelTfTexture_, &distanceTexture_, &distanceTfTexture_,
-                        &secondTexture_, &secondTfTexture_})
-        glGenTextures(1, t);
+    for (GlTexture* t : {&labelTexture_, &rowTexture_, &labelTfTexture_, &distanceTexture_, &distanceTfTexture_,
+                         &secondTexture_, &secondTfTexture_})
+        *t = GlTexture::make();
 }
 
-SceneVolumes::~SceneVolumes() {
-    for (unsigned* t : {&labelTexture_, &rowTexture_, &labelTfTexture_, &distanceTexture_, &distanceTfTexture_,
-                        &secondTexture_, &secondTfTexture_})
-        glDeleteTextures(1, t);
-}
+SceneVolumes::~SceneVolumes() = default;
 
 void SceneVolumes::prepare(const Scene& scene, const Volume& volume, unsigned long volumeGeneration,
                            const TransferFunction* sceneFunction) {

@@ -11,7 +11,6 @@ namespace voxlab {
 VolumeTextures::~VolumeTextures() { release(); }
 
 void VolumeTextures::release() {
-    if (!pool_.empty()) glDeleteTextures(GLsizei(pool_.size()), pool_.data());
     pool_.clear();
     holder_.clear();
     lastUse_.clear();
@@ -26,8 +25,9 @@ void VolumeTextures::set(const Volume& volume, unsigned long generation, std::si
     volume_ = &volume;
     generation_ = generation;
     uploads_ = bytes_ = 0;
-    pool_.assign(std::min(layout_.resident, layout_.bricks.size()), 0u);
-    glGenTextures(GLsizei(pool_.size()), pool_.data());
+    pool_.clear();
+    pool_.resize(std::min(layout_.resident, layout_.bricks.size()));
+    for (GlTexture& t : pool_) t = GlTexture::make();
     holder_.assign(pool_.size(), -1);
     lastUse_.assign(pool_.size(), -1);
     slotOf_.assign(layout_.bricks.size(), -1);

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "voxlab/gl_object.h"
 #include "voxlab/volume.h"
 #include "voxlab/volume_bricks.h"
 
@@ -42,7 +43,7 @@ private:
     unsigned long generation_ = 0;
     BrickLayout layout_;
     glm::vec2 scaleOffset_{1.0f, 0.0f};
-    std::vector<unsigned> pool_;
+    std::vector<GlTexture> pool_;
     std::vector<int> holder_;           // pool slot -> brick, -1 when empty
     std::vector<long> lastUse_;         // pool slot -> when it was last used
     std::vector<int> slotOf_;           // brick -> pool slot, -1 when not resident

@@ -167,6 +167,288 @@ DepthView updateDepthView(const RayProfile& profile, bool hovered, bool active, 
     return v;
 }
 
+// The plots' layout and scales for one profile on one canvas, and its
+// parts, each drawn by one method (top to bottom: legend, value plot,
+// opacity plot for compositing, two colour strips, the depth axis; a left
+// margin for the y labels).
+struct ProfileCanvas {
+    const RayProfile& profile;
+    ImDrawList* dl = nullptr;
+    ImVec2 origin;
+    float em = 0.0f;
+    int count = 0;
+    bool hovered = false, active = false;
+    bool composites = false, strips = false;
+    float left = 0.0f, right = 0.0f, stripHeight = 0.0f, bottom = 0.0f, axisY = 0.0f;
+    Box valueBox, opacityBox, sampleStrip, resultStrip;
+    DepthView view;
+    double tLo = 0.0, tHi = 1.0, vLo = 0.0, vHi = 1.0;
+    int first = 0, last = 0;  // the samples in view (one more on each side, for the lines)
+    float sampleWidth = 0.0f;
+
+    ProfileCanvas(const RayProfile& p, ImVec2 canvasSize, const glm::dvec2& valueRange);
+    float xOf(double t) const { return float(left + (t - tLo) / (tHi - tLo) * (right - left)); }
+    float valueY(double v) const {
+        const double f = std::clamp((v - vLo) / (vHi - vLo), -0.02, 1.02);
+        return float(valueBox.max.y - f * valueBox.height());
+    }
+    float opacityY(double a) const { return float(opacityBox.max.y - std::clamp(a, 0.0, 1.0) * opacityBox.height()); }
+
+    void legend() const;
+    void frames() const;
+    void depthAxis() const;
+    template <class YOf>
+    void polyline(const Box& box, ImU32 col, float thickness, YOf yOf) const;
+    void valueLines() const;
+    void opacityPlot() const;
+    void colourStrips() const;
+    void stopAndChoice() const;
+    void stripLabels() const;
+    void hoverSample() const;
+};
+
+ProfileCanvas::ProfileCanvas(const RayProfile& p, ImVec2 canvasSize, const glm::dvec2& valueRange) : profile(p) {
+    em = ImGui::GetFontSize();
+    count = int(profile.samples.size());
+    origin = ImGui::GetCursorScreenPos();
+    ImGui::InvisibleButton("canvas", canvasSize);
+    hovered = ImGui::IsItemHovered(), active = ImGui::IsItemActive();
+    dl = ImGui::GetWindowDrawList();
+
+    composites = profile.model == ProfileModel::Composite && profile.hitsVolume;
+    strips = profile.model != ProfileModel::Isosurface && profile.modelled;
+    left = origin.x + em * 3.6f, right = origin.x + canvasSize.x - em * 0.6f;
+    stripHeight = em * 0.95f;
+    const float gap = em * 0.6f, axisHeight = em * 2.4f, legendHeight = em * 1.5f;
+    const float stripsHeight = strips ? 2.0f * stripHeight + 1.6f * gap : 0.0f;
+    const float plotsHeight = canvasSize.y - legendHeight - stripsHeight - axisHeight;
+    float y = origin.y + legendHeight;
+    valueBox = Box{ImVec2(left, y), ImVec2(right, y + plotsHeight * (composites ? 0.55f : 1.0f))};
+    y = valueBox.max.y;
+    opacityBox = Box{ImVec2(left, y), ImVec2(right, y)};
+    if (composites) {
+        opacityBox = Box{ImVec2(left, y + gap), ImVec2(right, y + plotsHeight * 0.45f)};
+        y = opacityBox.max.y;
+    }
+    sampleStrip = Box{ImVec2(left, y + gap), ImVec2(right, y + gap + stripHeight)};
+    resultStrip = Box{ImVec2(left, sampleStrip.max.y + 0.6f * gap), ImVec2(right, sampleStrip.max.y + 0.6f * gap + stripHeight)};
+    bottom = strips ? resultStrip.max.y : y;  // the lowest thing a vertical marker crosses
+    axisY = bottom + 0.6f * gap;
+
+    // The depth axis: the clipped ray, widened to hold every sample's
+    // interval, of which the view shows a part.
+    const double rayLo = std::min(profile.tEntry, profile.samples.front().t - 0.5 * profile.step);
+    const double rayHi = std::max(profile.tExit, profile.samples.back().t + 0.5 * profile.step);
+    view = updateDepthView(profile, hovered, active, left, right, std::min(1.0, 6.0 * profile.step / (rayHi - rayLo)));
+    tLo = rayLo + view.lo * (rayHi - rayLo), tHi = rayLo + view.hi * (rayHi - rayLo);
+    vLo = valueRange.x, vHi = valueRange.y > valueRange.x ? valueRange.y : valueRange.x + 1.0;
+    first = std::clamp(int(std::floor((tLo - profile.tEntry) / profile.step - 0.5)) - 1, 0, count - 1);
+    last = std::clamp(int(std::ceil((tHi - profile.tEntry) / profile.step - 0.5)) + 1, 0, count - 1);
+    sampleWidth = (right - left) * float(profile.step / (tHi - tLo));
+}
+
+// The legend row above the plots; shorter names when the long ones do not fit.
+void ProfileCanvas::legend() const {
+    struct Entry {
+        ImU32 colour;
+        const char *name, *shortName;
+        bool dashed;
+    };
+    std::vector<Entry> entries = {{kValueColour, "value", "value", false}};
+    if (profile.model == ProfileModel::Minimum) entries.push_back({kMinColour, "running min", "min", false});
+    else if (profile.model == ProfileModel::Mean) entries.push_back({kMeanColour, "running mean", "mean", false});
+    else entries.push_back({kMaxColour, "running max", "max", false});
+    if (profile.hasThreshold)
+        entries.push_back({kThresholdColour, profile.model == ProfileModel::Isosurface ? "isovalue" : "threshold",
+                           profile.model == ProfileModel::Isosurface ? "iso" : "thresh.", true});
+    if (composites) {
+        entries.push_back({kSampleOpacityColour, "sample opacity", "opacity", false});
+        entries.push_back({kAccumulatedColour, "accumulated", "accum.", false});
+    }
+    if (profile.stoppedAt >= 0) entries.push_back({kStopColour, "stop", "stop", false});
+    float needed = 0.0f;
+    for (const Entry& e : entries) needed += em * 2.2f + 4.0f + ImGui::CalcTextSize(e.name).x;  // as legendEntry
+    const bool compact = needed > right - origin.x - em;
+    float x = origin.x + em * 0.5f;
+    for (const Entry& e : entries)
+        x = legendEntry(dl, x, origin.y + em * 0.1f, e.colour, compact ? e.shortName : e.name, e.dashed);
+}
+
+// Plot frames, with value ticks at round numbers of the data.
+void ProfileCanvas::frames() const {
+    const double step = niceTickStep(vHi - vLo, std::max(2, int(valueBox.height() / (em * 2.2f))));
+    std::vector<std::string> texts;
+    std::vector<float> fractions;
+    for (double v = std::ceil(vLo / step) * step; v <= vHi + 1e-9 * step; v += step) {
+        texts.push_back(shortNumber(std::abs(v) < 1e-9 * step ? 0.0 : v));
+        fractions.push_back(float((v - vLo) / (vHi - vLo)));
+    }
+    std::vector<const char*> labels;
+    for (const std::string& t : texts) labels.push_back(t.c_str());
+    plotFrame(dl, valueBox, "value", labels.data(), fractions.data(), int(labels.size()));
+    if (composites) {
+        const char* opacityLabels[] = {"0", "0.5", "1"};
+        const float opacityFractions[] = {0.0f, 0.5f, 1.0f};
+        plotFrame(dl, opacityBox, "opacity", opacityLabels, opacityFractions, 3);
+    }
+}
+
+// Depth ticks (grid lines through the plots, labels under the axis), the
+// axis's name at the right and, while the mouse is over the plots, how to
+// zoom at the left (the name shrinks to "t" if both do not fit).
+void ProfileCanvas::depthAxis() const {
+    const double tick = niceTickStep(tHi - tLo, std::max(2, int((right - left) / (em * 5.0f))));
+    for (double t = std::ceil(tLo / tick) * tick; t <= tHi + 1e-9 * tick; t += tick) {
+        const float x = xOf(t);
+        dl->AddLine(ImVec2(x, valueBox.min.y), ImVec2(x, valueBox.max.y), kGridColour);
+        if (composites) dl->AddLine(ImVec2(x, opacityBox.min.y), ImVec2(x, opacityBox.max.y), kGridColour);
+        dl->AddLine(ImVec2(x, axisY), ImVec2(x, axisY + em * 0.35f), kFrameColour);
+        const std::string text = shortNumber(std::abs(t) < 1e-9 * tick ? 0.0 : t);
+        const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+        dl->AddText(ImVec2(std::clamp(x - size.x * 0.5f, left - em, right - size.x), axisY + em * 0.4f),
+                    kDimLabelColour, text.c_str());
+    }
+    dl->AddLine(ImVec2(left, axisY), ImVec2(right, axisY), kFrameColour);
+    const bool zoomed = view.hi - view.lo < 1.0f;
+    const char* hint = zoomed ? "wheel: zoom  drag: pan  double-click: whole ray" : "wheel: zoom";
+    const float hintWidth = hovered || zoomed ? ImGui::CalcTextSize(hint).x + em : 0.0f;
+    const char* axisLabel = "t along the ray (world units)";
+    if (left + hintWidth + ImGui::CalcTextSize(axisLabel).x > right) axisLabel = "t";
+    const float textY = axisY + em * 1.35f;
+    dl->AddText(ImVec2(right - ImGui::CalcTextSize(axisLabel).x, textY), kDimLabelColour, axisLabel);
+    if (hintWidth > 0.0f) dl->AddText(ImVec2(left, textY), IM_COL32(120, 120, 130, 255), hint);
+}
+
+// A line through the samples in view, clipped to `box`.
+template <class YOf>
+void ProfileCanvas::polyline(const Box& box, ImU32 col, float thickness, YOf yOf) const {
+    std::vector<ImVec2> line;
+    for (int m = first; m <= last; ++m) line.push_back(ImVec2(xOf(profile.samples[m].t), yOf(profile.samples[m])));
+    dl->PushClipRect(ImVec2(box.min.x, box.min.y - 1.0f), ImVec2(box.max.x, box.max.y + 1.0f), true);
+    if (line.size() == 1) dl->AddCircleFilled(line[0], thickness + 1.0f, col);
+    else dl->AddPolyline(line.data(), int(line.size()), col, ImDrawFlags_None, thickness);
+    dl->PopClipRect();
+}
+
+// The threshold, the running statistic and the values (each sample marked
+// when few are on show).
+void ProfileCanvas::valueLines() const {
+    if (profile.hasThreshold)
+        dashedHorizontal(dl, valueBox.min.x, valueBox.max.x, valueY(profile.threshold), kThresholdColour, em * 0.4f);
+    if (profile.model == ProfileModel::Minimum)
+        polyline(valueBox, kMinColour, 2.0f, [&](const RaySample& s) { return valueY(s.runningMin); });
+    else if (profile.model == ProfileModel::Mean)
+        polyline(valueBox, kMeanColour, 2.0f, [&](const RaySample& s) { return valueY(s.runningMean); });
+    else
+        polyline(valueBox, kMaxColour, 2.0f, [&](const RaySample& s) { return valueY(s.runningMax); });
+    polyline(valueBox, kValueColour, 1.6f, [&](const RaySample& s) { return valueY(s.value); });
+    if (sampleWidth >= 5.0f)
+        for (int m = first; m <= last; ++m) {
+            const RaySample& s = profile.samples[m];
+            dl->AddCircleFilled(ImVec2(xOf(s.t), valueY(s.value)), 2.2f, kValueColour);
+        }
+}
+
+// Opacity of each sample as stems (a filled area when they crowd), the
+// accumulated opacity as a line, the termination level dashed.
+void ProfileCanvas::opacityPlot() const {
+    dl->PushClipRect(opacityBox.min, opacityBox.max, true);
+    const int limit = profile.stoppedAt >= 0 ? profile.stoppedAt : count - 1;
+    for (int m = first; m <= last; ++m) {
+        const RaySample& s = profile.samples[m];
+        const float x = xOf(s.t);
+        const ImU32 col = m <= limit ? kSampleOpacityColour : IM_COL32(150, 90, 90, 110);
+        if (sampleWidth >= 4.0f)
+            dl->AddLine(ImVec2(x, opacityBox.max.y), ImVec2(x, opacityY(s.classified.a)), col, 2.0f);
+        else
+            dl->AddRectFilled(ImVec2(x - 0.5f * sampleWidth, opacityY(s.classified.a)),
+                              ImVec2(x + 0.5f * sampleWidth + 0.5f, opacityBox.max.y), col);
+    }
+    if (profile.earlyTermination < 1.0)
+        dashedHorizontal(dl, opacityBox.min.x, opacityBox.max.x, opacityY(profile.earlyTermination),
+                         IM_COL32(255, 120, 120, 150), em * 0.3f);
+    dl->PopClipRect();
+    polyline(opacityBox, kAccumulatedColour, 2.2f, [&](const RaySample& s) { return opacityY(s.accumulated.a); });
+}
+
+// Colour strips: each sample's own colour, and the pixel so far. Composite:
+// each sample's colour at an opacity relative to the most opaque sample of
+// the ray, so that transparent samples fade out. Projections: each value as
+// the pixel would show it.
+void ProfileCanvas::colourStrips() const {
+    float peak = 0.0f;
+    for (const RaySample& s : profile.samples) peak = std::max(peak, s.classified.a);
+    for (const Box* b : {&sampleStrip, &resultStrip}) checkerboard(dl, b->min, b->max, stripHeight * 0.5f);
+    for (int m = first; m <= last; ++m) {
+        const RaySample& s = profile.samples[m];
+        const float x0 = xOf(s.t - 0.5 * profile.step);
+        const float x1 = std::max(xOf(s.t + 0.5 * profile.step), x0 + 1.0f);
+        const glm::vec4 c = s.classified;
+        const float sampleAlpha = composites ? (peak > 0.0f ? c.a / peak : 0.0f) : c.a;
+        dl->AddRectFilled(ImVec2(x0, sampleStrip.min.y), ImVec2(x1, sampleStrip.max.y), colourOf(c, sampleAlpha));
+        const glm::vec4 acc = s.accumulated;
+        const glm::vec4 straight = acc.a > 0.0f ? glm::vec4(glm::vec3(acc) / acc.a, acc.a) : glm::vec4(0.0f);
+        dl->AddRectFilled(ImVec2(x0, resultStrip.min.y), ImVec2(x1, resultStrip.max.y), colourOf(straight, acc.a));
+    }
+    dl->AddRect(sampleStrip.min, sampleStrip.max, kFrameColour);
+    dl->AddRect(resultStrip.min, resultStrip.max, kFrameColour);
+}
+
+// The stop: samples after it are dimmed, a red line marks it; the sample
+// that gives the pixel its value is ringed.
+void ProfileCanvas::stopAndChoice() const {
+    if (profile.stoppedAt >= 0) {
+        const float x = xOf(profile.samples[profile.stoppedAt].t + 0.5 * profile.step);
+        if (x < right) dl->AddRectFilled(ImVec2(x, valueBox.min.y), ImVec2(right, bottom), IM_COL32(0, 0, 0, 120));
+        const float xs = xOf(profile.model == ProfileModel::Isosurface ? profile.hitT : profile.samples[profile.stoppedAt].t);
+        dl->AddLine(ImVec2(xs, valueBox.min.y), ImVec2(xs, bottom), kStopColour, 2.0f);
+    }
+    if (profile.chosen >= 0 && profile.model != ProfileModel::FirstHit && profile.model != ProfileModel::Isosurface) {
+        const RaySample& s = profile.samples[profile.chosen];
+        dl->AddCircle(ImVec2(xOf(s.t), valueY(s.value)), em * 0.4f, kMaxColour, 0, 2.0f);
+    }
+}
+
+void ProfileCanvas::stripLabels() const {
+    const char* names[] = {composites ? "colour" : "sample", composites ? "accum." : "pixel"};
+    const Box* boxes[] = {&sampleStrip, &resultStrip};
+    for (int i = 0; i < 2; ++i) {
+        const ImVec2 size = ImGui::CalcTextSize(names[i]);
+        dl->AddText(ImVec2(left - size.x - 6.0f, boxes[i]->min.y + 0.5f * (stripHeight - size.y)), kDimLabelColour,
+                    names[i]);
+    }
+}
+
+// Hover: the nearest sample marked, and its numbers in a tooltip.
+void ProfileCanvas::hoverSample() const {
+    const double t = tLo + (ImGui::GetIO().MousePos.x - left) / (right - left) * (tHi - tLo);
+    const int m = std::clamp(int(std::lround((t - profile.tEntry) / profile.step - 0.5)), 0, count - 1);
+    const RaySample& s = profile.samples[m];
+    const float x = xOf(s.t);
+    if (x >= left && x <= right) {
+        dl->AddLine(ImVec2(x, valueBox.min.y), ImVec2(x, bottom), kCursorColour, 1.0f);
+        dl->AddCircleFilled(ImVec2(x, valueY(s.value)), 3.5f, kValueColour);
+        if (composites) dl->AddCircleFilled(ImVec2(x, opacityY(s.accumulated.a)), 3.5f, kAccumulatedColour);
+    }
+    ImGui::BeginTooltip();
+    ImGui::Text("sample %d%s", m, profile.stoppedAt >= 0 && m > profile.stoppedAt ? "  (after the stop)" : "");
+    ImGui::Text("t %.4g   at (%.4g, %.4g, %.4g)", s.t, s.position.x, s.position.y, s.position.z);
+    ImGui::Text("value %.5g", s.value);
+    ImGui::TextDisabled("running max %.5g  min %.5g  mean %.5g", s.runningMax, s.runningMin, s.runningMean);
+    if (profile.modelled && profile.model != ProfileModel::Isosurface) {
+        const glm::vec4& c = s.classified;
+        const glm::vec4& a = s.accumulated;
+        if (composites) {
+            ImGui::Text("colour %.3f %.3f %.3f   opacity %.4f", c.r, c.g, c.b, c.a);
+            ImGui::Text("accumulated C %.3f %.3f %.3f   A %.4f", a.r, a.g, a.b, a.a);
+        } else {
+            ImGui::Text("shown as %.3f %.3f %.3f   alpha %.3f", c.r, c.g, c.b, c.a);
+            ImGui::Text("pixel so far %.3f %.3f %.3f   alpha %.3f", a.r, a.g, a.b, a.a);
+        }
+    }
+    ImGui::EndTooltip();
+}
+
 }  // namespace
 
 void RayProfilePanel(const char* label, const RayProfile& profile, const glm::dvec2& valueRange) {
@@ -194,249 +476,19 @@ void RayProfilePanel(const char* label, const RayProfile& profile, const glm::dv
         return;
     }
 
-    const ImVec2 origin = ImGui::GetCursorScreenPos();
-    ImGui::InvisibleButton("canvas", canvasSize);
-    const bool hovered = ImGui::IsItemHovered(), active = ImGui::IsItemActive();
-    ImDrawList* dl = ImGui::GetWindowDrawList();
-
-    // Layout, top to bottom: legend, value plot, opacity plot (composite),
-    // two colour strips, the depth axis; a left margin for the y labels.
-    const bool composites = profile.model == ProfileModel::Composite && profile.hitsVolume;
-    const bool strips = profile.model != ProfileModel::Isosurface && profile.modelled;
-    const float left = origin.x + em * 3.6f, right = origin.x + canvasSize.x - em * 0.6f;
-    const float stripHeight = em * 0.95f, gap = em * 0.6f, axisHeight = em * 2.4f, legendHeight = em * 1.5f;
-    const float stripsHeight = strips ? 2.0f * stripHeight + 1.6f * gap : 0.0f;
-    const float plotsHeight = canvasSize.y - legendHeight - stripsHeight - axisHeight;
-    float y = origin.y + legendHeight;
-    const Box valueBox{ImVec2(left, y), ImVec2(right, y + plotsHeight * (composites ? 0.55f : 1.0f))};
-    y = valueBox.max.y;
-    Box opacityBox{ImVec2(left, y), ImVec2(right, y)};
-    if (composites) {
-        opacityBox = Box{ImVec2(left, y + gap), ImVec2(right, y + plotsHeight * 0.45f)};
-        y = opacityBox.max.y;
-    }
-    const Box sampleStrip{ImVec2(left, y + gap), ImVec2(right, y + gap + stripHeight)};
-    const Box resultStrip{ImVec2(left, sampleStrip.max.y + 0.6f * gap),
-                          ImVec2(right, sampleStrip.max.y + 0.6f * gap + stripHeight)};
-    const float bottom = strips ? resultStrip.max.y : y;  // the lowest thing a vertical marker crosses
-    const float axisY = bottom + 0.6f * gap;
-
-    // The depth axis: the clipped ray, widened to hold every sample's
-    // interval, of which the view shows a part.
-    const double rayLo = std::min(profile.tEntry, profile.samples.front().t - 0.5 * profile.step);
-    const double rayHi = std::max(profile.tExit, profile.samples.back().t + 0.5 * profile.step);
-    const DepthView view =
-        updateDepthView(profile, hovered, active, left, right, std::min(1.0, 6.0 * profile.step / (rayHi - rayLo)));
-    const double tLo = rayLo + view.lo * (rayHi - rayLo), tHi = rayLo + view.hi * (rayHi - rayLo);
-    const auto xOf = [&](double t) { return float(left + (t - tLo) / (tHi - tLo) * (right - left)); };
-    const double vLo = valueRange.x, vHi = valueRange.y > valueRange.x ? valueRange.y : valueRange.x + 1.0;
-    const auto valueY = [&](double v) {
-        const double f = std::clamp((v - vLo) / (vHi - vLo), -0.02, 1.02);
-        return float(valueBox.max.y - f * valueBox.height());
-    };
-    const auto opacityY = [&](double a) {
-        return float(opacityBox.max.y - std::clamp(a, 0.0, 1.0) * opacityBox.height());
-    };
-    // The samples in view (with one more on each side, for the lines).
-    const int first = std::clamp(int(std::floor((tLo - profile.tEntry) / profile.step - 0.5)) - 1, 0, count - 1);
-    const int last = std::clamp(int(std::ceil((tHi - profile.tEntry) / profile.step - 0.5)) + 1, 0, count - 1);
-
-    // Legend row above the plots; shorter names when the long ones do not fit.
-    {
-        struct Entry {
-            ImU32 colour;
-            const char *name, *shortName;
-            bool dashed;
-        };
-        std::vector<Entry> entries = {{kValueColour, "value", "value", false}};
-        if (profile.model == ProfileModel::Minimum) entries.push_back({kMinColour, "running min", "min", false});
-        else if (profile.model == ProfileModel::Mean) entries.push_back({kMeanColour, "running mean", "mean", false});
-        else entries.push_back({kMaxColour, "running max", "max", false});
-        if (profile.hasThreshold)
-            entries.push_back({kThresholdColour, profile.model == ProfileModel::Isosurface ? "isovalue" : "threshold",
-                               profile.model == ProfileModel::Isosurface ? "iso" : "thresh.", true});
-        if (composites) {
-            entries.push_back({kSampleOpacityColour, "sample opacity", "opacity", false});
-            entries.push_back({kAccumulatedColour, "accumulated", "accum.", false});
-        }
-        if (profile.stoppedAt >= 0) entries.push_back({kStopColour, "stop", "stop", false});
-        float needed = 0.0f;
-        for (const Entry& e : entries) needed += em * 2.2f + 4.0f + ImGui::CalcTextSize(e.name).x;  // as legendEntry
-        const bool compact = needed > right - origin.x - em;
-        float x = origin.x + em * 0.5f;
-        for (const Entry& e : entries)
-            x = legendEntry(dl, x, origin.y + em * 0.1f, e.colour, compact ? e.shortName : e.name, e.dashed);
-    }
-
-    // Plot frames, with value ticks at round numbers of the data.
-    {
-        const double step = niceTickStep(vHi - vLo, std::max(2, int(valueBox.height() / (em * 2.2f))));
-        std::vector<std::string> texts;
-        std::vector<float> fractions;
-        for (double v = std::ceil(vLo / step) * step; v <= vHi + 1e-9 * step; v += step) {
-            texts.push_back(shortNumber(std::abs(v) < 1e-9 * step ? 0.0 : v));
-            fractions.push_back(float((v - vLo) / (vHi - vLo)));
-        }
-        std::vector<const char*> labels;
-        for (const std::string& t : texts) labels.push_back(t.c_str());
-        plotFrame(dl, valueBox, "value", labels.data(), fractions.data(), int(labels.size()));
-    }
-    if (composites) {
-        const char* labels[] = {"0", "0.5", "1"};
-        const float fractions[] = {0.0f, 0.5f, 1.0f};
-        plotFrame(dl, opacityBox, "opacity", labels, fractions, 3);
-    }
-
-    // Depth ticks: grid lines through the plots, labels under the axis.
-    const double tick = niceTickStep(tHi - tLo, std::max(2, int((right - left) / (em * 5.0f))));
-    for (double t = std::ceil(tLo / tick) * tick; t <= tHi + 1e-9 * tick; t += tick) {
-        const float x = xOf(t);
-        dl->AddLine(ImVec2(x, valueBox.min.y), ImVec2(x, valueBox.max.y), kGridColour);
-        if (composites) dl->AddLine(ImVec2(x, opacityBox.min.y), ImVec2(x, opacityBox.max.y), kGridColour);
-        dl->AddLine(ImVec2(x, axisY), ImVec2(x, axisY + em * 0.35f), kFrameColour);
-        const std::string text = shortNumber(std::abs(t) < 1e-9 * tick ? 0.0 : t);
-        const ImVec2 size = ImGui::CalcTextSize(text.c_str());
-        dl->AddText(ImVec2(std::clamp(x - size.x * 0.5f, left - em, right - size.x), axisY + em * 0.4f),
-                    kDimLabelColour, text.c_str());
-    }
-    dl->AddLine(ImVec2(left, axisY), ImVec2(right, axisY), kFrameColour);
-    {
-        // The axis's name at the right; while the mouse is over the plots,
-        // how to zoom at the left (the name shrinks to "t" if both do not fit).
-        const bool zoomed = view.hi - view.lo < 1.0f;
-        const char* hint = zoomed ? "wheel: zoom  drag: pan  double-click: whole ray" : "wheel: zoom";
-        const float hintWidth = hovered || zoomed ? ImGui::CalcTextSize(hint).x + em : 0.0f;
-        const char* axisLabel = "t along the ray (world units)";
-        if (left + hintWidth + ImGui::CalcTextSize(axisLabel).x > right) axisLabel = "t";
-        const float textY = axisY + em * 1.35f;
-        dl->AddText(ImVec2(right - ImGui::CalcTextSize(axisLabel).x, textY), kDimLabelColour, axisLabel);
-        if (hintWidth > 0.0f) dl->AddText(ImVec2(left, textY), IM_COL32(120, 120, 130, 255), hint);
-    }
-
+    const ProfileCanvas canvas(profile, canvasSize, valueRange);
+    canvas.legend();
+    canvas.frames();
+    canvas.depthAxis();
     // Everything from here on is clipped to the plots' columns.
-    dl->PushClipRect(ImVec2(left, origin.y), ImVec2(right, axisY), true);
-    std::vector<ImVec2> line;
-    const auto polyline = [&](const Box& box, ImU32 col, float thickness, auto&& yOf) {
-        line.clear();
-        for (int m = first; m <= last; ++m) line.push_back(ImVec2(xOf(profile.samples[m].t), yOf(profile.samples[m])));
-        dl->PushClipRect(ImVec2(box.min.x, box.min.y - 1.0f), ImVec2(box.max.x, box.max.y + 1.0f), true);
-        if (line.size() == 1) dl->AddCircleFilled(line[0], thickness + 1.0f, col);
-        else dl->AddPolyline(line.data(), int(line.size()), col, ImDrawFlags_None, thickness);
-        dl->PopClipRect();
-    };
-    const float sampleWidth = (right - left) * float(profile.step / (tHi - tLo));
-    if (profile.hasThreshold)
-        dashedHorizontal(dl, valueBox.min.x, valueBox.max.x, valueY(profile.threshold), kThresholdColour, em * 0.4f);
-    if (profile.model == ProfileModel::Minimum)
-        polyline(valueBox, kMinColour, 2.0f, [&](const RaySample& s) { return valueY(s.runningMin); });
-    else if (profile.model == ProfileModel::Mean)
-        polyline(valueBox, kMeanColour, 2.0f, [&](const RaySample& s) { return valueY(s.runningMean); });
-    else
-        polyline(valueBox, kMaxColour, 2.0f, [&](const RaySample& s) { return valueY(s.runningMax); });
-    polyline(valueBox, kValueColour, 1.6f, [&](const RaySample& s) { return valueY(s.value); });
-    if (sampleWidth >= 5.0f)  // few samples on show: mark each one
-        for (int m = first; m <= last; ++m) {
-            const RaySample& s = profile.samples[m];
-            dl->AddCircleFilled(ImVec2(xOf(s.t), valueY(s.value)), 2.2f, kValueColour);
-        }
-
-    if (composites) {
-        // Opacity of each sample as stems (a filled area when they crowd),
-        // the accumulated opacity as a line, the termination level dashed.
-        dl->PushClipRect(opacityBox.min, opacityBox.max, true);
-        const int limit = profile.stoppedAt >= 0 ? profile.stoppedAt : count - 1;
-        for (int m = first; m <= last; ++m) {
-            const RaySample& s = profile.samples[m];
-            const float x = xOf(s.t);
-            const ImU32 col = m <= limit ? kSampleOpacityColour : IM_COL32(150, 90, 90, 110);
-            if (sampleWidth >= 4.0f)
-                dl->AddLine(ImVec2(x, opacityBox.max.y), ImVec2(x, opacityY(s.classified.a)), col, 2.0f);
-            else
-                dl->AddRectFilled(ImVec2(x - 0.5f * sampleWidth, opacityY(s.classified.a)),
-                                  ImVec2(x + 0.5f * sampleWidth + 0.5f, opacityBox.max.y), col);
-        }
-        if (profile.earlyTermination < 1.0)
-            dashedHorizontal(dl, opacityBox.min.x, opacityBox.max.x, opacityY(profile.earlyTermination),
-                             IM_COL32(255, 120, 120, 150), em * 0.3f);
-        dl->PopClipRect();
-        polyline(opacityBox, kAccumulatedColour, 2.2f, [&](const RaySample& s) { return opacityY(s.accumulated.a); });
-    }
-
-    // Colour strips: each sample's own colour, and the pixel so far.
-    if (strips) {
-        // Composite: each sample's colour at an opacity relative to the most
-        // opaque sample of the ray, so that transparent samples fade out.
-        // Projections: each value as the pixel would show it.
-        float peak = 0.0f;
-        for (const RaySample& s : profile.samples) peak = std::max(peak, s.classified.a);
-        for (const Box* b : {&sampleStrip, &resultStrip}) checkerboard(dl, b->min, b->max, stripHeight * 0.5f);
-        for (int m = first; m <= last; ++m) {
-            const RaySample& s = profile.samples[m];
-            const float x0 = xOf(s.t - 0.5 * profile.step);
-            const float x1 = std::max(xOf(s.t + 0.5 * profile.step), x0 + 1.0f);
-            const glm::vec4 c = s.classified;
-            const float sampleAlpha = composites ? (peak > 0.0f ? c.a / peak : 0.0f) : c.a;
-            dl->AddRectFilled(ImVec2(x0, sampleStrip.min.y), ImVec2(x1, sampleStrip.max.y), colourOf(c, sampleAlpha));
-            const glm::vec4 acc = s.accumulated;
-            const glm::vec4 straight = acc.a > 0.0f ? glm::vec4(glm::vec3(acc) / acc.a, acc.a) : glm::vec4(0.0f);
-            dl->AddRectFilled(ImVec2(x0, resultStrip.min.y), ImVec2(x1, resultStrip.max.y), colourOf(straight, acc.a));
-        }
-        dl->AddRect(sampleStrip.min, sampleStrip.max, kFrameColour);
-        dl->AddRect(resultStrip.min, resultStrip.max, kFrameColour);
-    }
-
-    // The stop: samples after it are dimmed, a red line marks it.
-    if (profile.stoppedAt >= 0) {
-        const float x = xOf(profile.samples[profile.stoppedAt].t + 0.5 * profile.step);
-        if (x < right) dl->AddRectFilled(ImVec2(x, valueBox.min.y), ImVec2(right, bottom), IM_COL32(0, 0, 0, 120));
-        const float xs = xOf(profile.model == ProfileModel::Isosurface ? profile.hitT : profile.samples[profile.stoppedAt].t);
-        dl->AddLine(ImVec2(xs, valueBox.min.y), ImVec2(xs, bottom), kStopColour, 2.0f);
-    }
-    if (profile.chosen >= 0 && profile.model != ProfileModel::FirstHit && profile.model != ProfileModel::Isosurface) {
-        const RaySample& s = profile.samples[profile.chosen];
-        dl->AddCircle(ImVec2(xOf(s.t), valueY(s.value)), em * 0.4f, kMaxColour, 0, 2.0f);
-    }
-    dl->PopClipRect();
-
-    if (strips) {
-        const char* names[] = {composites ? "colour" : "sample", composites ? "accum." : "pixel"};
-        const Box* boxes[] = {&sampleStrip, &resultStrip};
-        for (int i = 0; i < 2; ++i) {
-            const ImVec2 size = ImGui::CalcTextSize(names[i]);
-            dl->AddText(ImVec2(left - size.x - 6.0f, boxes[i]->min.y + 0.5f * (stripHeight - size.y)), kDimLabelColour,
-                        names[i]);
-        }
-    }
-
-    // Hover: the nearest sample's numbers.
-    if (hovered && !active) {
-        const double t = tLo + (ImGui::GetIO().MousePos.x - left) / (right - left) * (tHi - tLo);
-        const int m = std::clamp(int(std::lround((t - profile.tEntry) / profile.step - 0.5)), 0, count - 1);
-        const RaySample& s = profile.samples[m];
-        const float x = xOf(s.t);
-        if (x >= left && x <= right) {
-            dl->AddLine(ImVec2(x, valueBox.min.y), ImVec2(x, bottom), kCursorColour, 1.0f);
-            dl->AddCircleFilled(ImVec2(x, valueY(s.value)), 3.5f, kValueColour);
-            if (composites) dl->AddCircleFilled(ImVec2(x, opacityY(s.accumulated.a)), 3.5f, kAccumulatedColour);
-        }
-        ImGui::BeginTooltip();
-        ImGui::Text("sample %d%s", m, profile.stoppedAt >= 0 && m > profile.stoppedAt ? "  (after the stop)" : "");
-        ImGui::Text("t %.4g   at (%.4g, %.4g, %.4g)", s.t, s.position.x, s.position.y, s.position.z);
-        ImGui::Text("value %.5g", s.value);
-        ImGui::TextDisabled("running max %.5g  min %.5g  mean %.5g", s.runningMax, s.runningMin, s.runningMean);
-        if (profile.modelled && profile.model != ProfileModel::Isosurface) {
-            const glm::vec4& c = s.classified;
-            const glm::vec4& a = s.accumulated;
-            if (composites) {
-                ImGui::Text("colour %.3f %.3f %.3f   opacity %.4f", c.r, c.g, c.b, c.a);
-                ImGui::Text("accumulated C %.3f %.3f %.3f   A %.4f", a.r, a.g, a.b, a.a);
-            } else {
-                ImGui::Text("shown as %.3f %.3f %.3f   alpha %.3f", c.r, c.g, c.b, c.a);
-                ImGui::Text("pixel so far %.3f %.3f %.3f   alpha %.3f", a.r, a.g, a.b, a.a);
-            }
-        }
-        ImGui::EndTooltip();
-    }
+    canvas.dl->PushClipRect(ImVec2(canvas.left, canvas.origin.y), ImVec2(canvas.right, canvas.axisY), true);
+    canvas.valueLines();
+    if (canvas.composites) canvas.opacityPlot();
+    if (canvas.strips) canvas.colourStrips();
+    canvas.stopAndChoice();
+    canvas.dl->PopClipRect();
+    if (canvas.strips) canvas.stripLabels();
+    if (canvas.hovered && !canvas.active) canvas.hoverSample();
 
     footerLines(profile);
     ImGui::PopID();

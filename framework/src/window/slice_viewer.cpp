@@ -127,10 +127,7 @@ void drawAxisGizmo(ImDrawList* list, ImVec2 imageMin, ImVec2 imageMax, glm::ivec
 
 }  // namespace
 
-SliceViewer::~SliceViewer() {
-    for (View& view : views_)
-        if (view.texture) glDeleteTextures(1, &view.texture);
-}
+SliceViewer::~SliceViewer() = default;
 
 void SliceViewer::invalidate() {
     for (View& view : views_) view.index = -1;
@@ -149,7 +146,7 @@ void SliceViewer::upload(View& view, const Volume& volume, int axis, int index, 
     glGetIntegerv(GL_UNPACK_ROW_LENGTH, &previousRowLength);
     glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &previousUnpackBuffer);
 
-    if (!view.texture) glGenTextures(1, &view.texture);
+    view.texture.ensure();
     glBindTexture(GL_TEXTURE_2D, view.texture);
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);  // rows of odd widths are not padded
@@ -188,6 +185,170 @@ bool SliceViewer::draw(const char* title, const Volume& volume, SliceCursor* cur
     return changed;
 }
 
+int SliceViewer::displayRow(const glm::ivec3& dims, int axis, int row) const {
+    return !zUp && axis != kAxialAxis ? sliceImageSize(dims, axis).y - 1 - row : row;
+}
+
+// Window/level fields: level and width in data units, and a reset; the
+// smooth and z-up switches.
+void SliceViewer::windowControls(SliceCursor* cursor, const glm::dvec2& range, double span) {
+    float level = float(windowLevel(cursor->window)), width = float(windowWidth(cursor->window));
+    const float speed = float(span / 500.0);
+    const float fieldWidth = std::max(70.0f, ImGui::GetFontSize() * 7.0f);
+    ImGui::SetNextItemWidth(fieldWidth);
+    const bool levelEdited = ImGui::DragFloat("level", &level, speed, 0.0f, 0.0f, "%.5g");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("window centre (data units); right-drag in a view: up/down");
+    sameLineIfFits(fieldWidth + labelWidth("width"));
+    ImGui::SetNextItemWidth(fieldWidth);
+    const bool widthEdited =
+        ImGui::DragFloat("width", &width, speed, float(span * 1e-3), FLT_MAX, "%.5g", ImGuiSliderFlags_AlwaysClamp);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("window width (data units); right-drag in a view: left/right");
+    if (levelEdited || widthEdited) cursor->window = windowFromLevelWidth(level, width);
+    sameLineIfFits(buttonWidth("reset"));
+    if (ImGui::Button("reset")) cursor->window = range.y > range.x ? range : glm::dvec2(range.x, range.x + 1.0);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("window = the volume's value range %g .. %g", range.x, range.y);
+    sameLineIfFits(checkboxWidth("smooth"));
+    ImGui::Checkbox("smooth", &smooth);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("bilinear filtering (off: each voxel a sharp square)");
+    sameLineIfFits(checkboxWidth("z up"));
+    ImGui::Checkbox("z up", &zUp);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("coronal and sagittal views with z growing upwards (off: downwards, for volumes\n"
+                          "stored from the top of the head down, such as cthead and headsq)");
+}
+
+// The view's image, centred in its cell at `scale` screen pixels per world unit.
+void SliceViewer::placeView(int axis, const Volume& volume, float scale, ImVec2 cellMin, ImVec2 cellMax) {
+    View& view = views_[axis];
+    const glm::dvec2 world = sliceWorldSize(volume.dims(), volume.spacing(), axis);
+    const ImVec2 size(std::max(1.0f, std::round(float(world.x) * scale)), std::max(1.0f, std::round(float(world.y) * scale)));
+    const ImVec2 cellSize = cellMax - cellMin;
+    view.imageMin = ImVec2(std::floor(cellMin.x + 0.5f * (cellSize.x - size.x)), std::floor(cellMin.y + 0.5f * (cellSize.y - size.y)));
+    view.imageMax = view.imageMin + size;
+}
+
+// A view's mouse and keys: a click moves the crosshair, a double click
+// enlarges, a right drag sets the window, the wheel and arrows step the slice.
+void SliceViewer::viewInput(int axis, const glm::ivec3& dims, SliceCursor* cursor, const glm::dvec2& range) {
+    View& view = views_[axis];
+    ImGuiIO& io = ImGui::GetIO();
+    ImGui::SetCursorScreenPos(view.imageMin);
+    ImGui::PushID(axis);
+    ImGui::InvisibleButton("view", view.imageMax - view.imageMin,
+                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+    ImGui::PopID();
+    if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) enlarged = enlarged < 0 ? axis : -1;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("double click: %s", enlarged < 0 ? "enlarge" : "all three views");
+    const glm::ivec2 imageSize = sliceImageSize(dims, axis);
+    glm::ivec2 pixel = pixelUnder(io.MousePos, view.imageMin, view.imageMax, imageSize);
+    pixel.y = displayRow(dims, axis, pixel.y);
+    if (ImGui::IsItemActive() && ImGui::IsMouseDown(ImGuiMouseButton_Left))
+        cursor->voxel = sliceVoxel(dims, axis, cursor->voxel[axis], pixel);
+    if (ImGui::IsItemActive() && ImGui::IsMouseDown(ImGuiMouseButton_Right) &&
+        (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f))
+        cursor->window = dragWindow(cursor->window, io.MouseDelta.x, io.MouseDelta.y, range);
+    if (!ImGui::IsItemHovered() && !ImGui::IsItemActive()) return;
+
+    hovered_ = sliceVoxel(dims, axis, cursor->voxel[axis], pixel);
+    int step = 0;
+    wheel_ += io.MouseWheel;
+    const int wheelSteps = int(wheel_);  // whole notches; a touchpad's fractions add up
+    wheel_ -= float(wheelSteps);
+    step += wheelSteps;
+    const auto pressed = [](ImGuiKey key) { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), true); };
+    if (pressed(ImGuiKey_UpArrow) || pressed(ImGuiKey_RightArrow)) step += 1;
+    if (pressed(ImGuiKey_DownArrow) || pressed(ImGuiKey_LeftArrow)) step -= 1;
+    if (pressed(ImGuiKey_PageUp)) step += 10;
+    if (pressed(ImGuiKey_PageDown)) step -= 10;
+    if (step != 0) {
+        cursor->voxel[axis] = std::clamp(cursor->voxel[axis] + step, 0, dims[axis] - 1);
+        (*hovered_)[axis] = cursor->voxel[axis];
+    }
+}
+
+// A view: its slice image, the crosshair, the voxel under the mouse, its
+// frame, name and axes.
+void SliceViewer::drawView(ImDrawList* list, int axis, const Volume& volume, const SliceCursor& cursor) {
+    View& view = views_[axis];
+    const glm::ivec3 dims = volume.dims();
+    upload(view, volume, axis, cursor.voxel[axis], cursor.window);
+    const ImVec2 a = view.imageMin, b = view.imageMax;
+    const glm::ivec2 imageSize = sliceImageSize(dims, axis);
+    const ImVec2 texel((b.x - a.x) / imageSize.x, (b.y - a.y) / imageSize.y);
+    const bool hot = hovered_ && ImGui::IsMouseHoveringRect(a, b);
+
+    const bool flipped = displayRow(dims, axis, 0) != 0;
+    list->AddImage(ImTextureID(std::intptr_t(view.texture.name())), a, b, ImVec2(0, flipped ? 1 : 0),
+                   ImVec2(1, flipped ? 0 : 1));
+
+    // Crosshair: the other two slices as lines in their colours, with a
+    // gap around the crosshair voxel so that it stays visible.
+    glm::ivec2 centrePixel = slicePixel(dims, axis, cursor.voxel);
+    centrePixel.y = displayRow(dims, axis, centrePixel.y);
+    const ImVec2 centre(a.x + (centrePixel.x + 0.5f) * texel.x, a.y + (centrePixel.y + 0.5f) * texel.y);
+    const float gapX = std::max(6.0f, texel.x), gapY = std::max(6.0f, texel.y);
+    const glm::ivec2 imageAxes = sliceImageAxes(axis);
+    const ImU32 vertical = axisColour(imageAxes.x, 0.8f), horizontal = axisColour(imageAxes.y, 0.8f);
+    list->AddLine(ImVec2(centre.x, a.y), ImVec2(centre.x, centre.y - gapY), vertical, 1.0f);
+    list->AddLine(ImVec2(centre.x, centre.y + gapY), ImVec2(centre.x, b.y), vertical, 1.0f);
+    list->AddLine(ImVec2(a.x, centre.y), ImVec2(centre.x - gapX, centre.y), horizontal, 1.0f);
+    list->AddLine(ImVec2(centre.x + gapX, centre.y), ImVec2(b.x, centre.y), horizontal, 1.0f);
+
+    // The voxel under the mouse, outlined once voxels are big enough to see.
+    if (hot && texel.x >= 4.0f && texel.y >= 4.0f) {
+        glm::ivec2 p = slicePixel(dims, axis, *hovered_);
+        p.y = displayRow(dims, axis, p.y);
+        const ImVec2 q(a.x + p.x * texel.x, a.y + p.y * texel.y);
+        list->AddRect(q, q + texel, IM_COL32(255, 255, 255, 140));
+    }
+
+    // Frame and labels: the slice's name and index, and which way the axes grow.
+    list->AddRect(a - ImVec2(1, 1), b + ImVec2(1, 1), axisColour(axis, hot ? 1.0f : 0.75f), 0.0f, 0, hot ? 2.0f : 1.0f);
+    char text[64];
+    std::snprintf(text, sizeof text, "%s  %s %d/%d", sliceAxisName(axis), axisLetter(axis), cursor.voxel[axis],
+                  dims[axis] - 1);
+    list->PushClipRect(a, b, true);
+    labelAt(list, a + ImVec2(5, 3), axisColour(axis), text);
+    const bool rowsGrowDown = axis == kAxialAxis || flipped;  // does the image's row axis point down?
+    drawAxisGizmo(list, a, b, imageAxes, rowsGrowDown);
+    list->PopClipRect();
+}
+
+namespace {
+
+// The spare grid cell: the volume's description and the controls.
+void describeVolume(const Volume& volume, ImVec2 min, ImVec2 max) {
+    if (max.x - min.x <= 120.0f || max.y - min.y <= 5 * ImGui::GetTextLineHeightWithSpacing()) return;
+    const glm::ivec3 dims = volume.dims();
+    const glm::dvec3 spacing = volume.spacing();
+    ImGui::SetCursorScreenPos(min + ImVec2(8, 4));
+    ImGui::PushTextWrapPos(max.x - 4);
+    ImGui::BeginGroup();
+    ImGui::Text("%s", volume.name().c_str());
+    ImGui::TextDisabled("%d x %d x %d %s", dims.x, dims.y, dims.z, voxelTypeName(volume.type()));
+    ImGui::TextDisabled("spacing %g x %g x %g", spacing.x, spacing.y, spacing.z);
+    ImGui::Spacing();
+    ImGui::TextDisabled("click: move crosshair");
+    ImGui::TextDisabled("scroll, arrows: slice");
+    ImGui::TextDisabled("right-drag: window/level");
+    ImGui::TextDisabled("double click: enlarge");
+    ImGui::EndGroup();
+    ImGui::PopTextWrapPos();
+}
+
+}  // namespace
+
+// Readout: the voxel under the mouse, or else the crosshair's, in data units.
+void SliceViewer::readout(const Volume& volume, const SliceCursor& cursor, ImVec2 at) {
+    ImGui::SetCursorScreenPos(at);
+    const glm::ivec3 read = hovered_ ? *hovered_ : cursor.voxel;
+    ImGui::TextColored(hovered_ ? ImVec4(1, 1, 1, 1) : ImVec4(0.7f, 0.7f, 0.7f, 1), "%s (%d, %d, %d)  value %.6g",
+                       hovered_ ? "mouse" : "crosshair", read.x, read.y, read.z, volume.value(read.x, read.y, read.z));
+    char windowText[64];
+    std::snprintf(windowText, sizeof windowText, "  window %.5g .. %.5g", cursor.window.x, cursor.window.y);
+    if (sameLineIfFits(ImGui::CalcTextSize(windowText).x)) ImGui::TextDisabled("%s", windowText);
+}
+
 bool SliceViewer::drawContents(const Volume& volume, SliceCursor* cursor) {
     hovered_.reset();
     const glm::ivec3 dims = volume.dims();
@@ -203,180 +364,38 @@ bool SliceViewer::drawContents(const Volume& volume, SliceCursor* cursor) {
     if (!(cursor->window.y > cursor->window.x))
         cursor->window = windowFromLevelWidth(windowLevel(cursor->window), span);
 
-    // Window/level fields: level and width in data units, and a reset.
     ImGui::PushID(this);
-    {
-        float level = float(windowLevel(cursor->window)), width = float(windowWidth(cursor->window));
-        const float speed = float(span / 500.0);
-        const float fieldWidth = std::max(70.0f, ImGui::GetFontSize() * 7.0f);
-        ImGui::SetNextItemWidth(fieldWidth);
-        const bool levelEdited = ImGui::DragFloat("level", &level, speed, 0.0f, 0.0f, "%.5g");
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("window centre (data units); right-drag in a view: up/down");
-        sameLineIfFits(fieldWidth + labelWidth("width"));
-        ImGui::SetNextItemWidth(fieldWidth);
-        const bool widthEdited =
-            ImGui::DragFloat("width", &width, speed, float(span * 1e-3), FLT_MAX, "%.5g", ImGuiSliderFlags_AlwaysClamp);
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("window width (data units); right-drag in a view: left/right");
-        if (levelEdited || widthEdited) cursor->window = windowFromLevelWidth(level, width);
-        sameLineIfFits(buttonWidth("reset"));
-        if (ImGui::Button("reset")) cursor->window = range.y > range.x ? range : glm::dvec2(range.x, range.x + 1.0);
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("window = the volume's value range %g .. %g", range.x, range.y);
-        sameLineIfFits(checkboxWidth("smooth"));
-        ImGui::Checkbox("smooth", &smooth);
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("bilinear filtering (off: each voxel a sharp square)");
-        sameLineIfFits(checkboxWidth("z up"));
-        ImGui::Checkbox("z up", &zUp);
-        if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("coronal and sagittal views with z growing upwards (off: downwards, for volumes\n"
-                              "stored from the top of the head down, such as cthead and headsq)");
-    }
+    windowControls(cursor, range, span);
 
     // The views share what is left, less one line for the readout.
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     ImVec2 avail = ImGui::GetContentRegionAvail();
     avail.y -= ImGui::GetTextLineHeightWithSpacing();
     avail = ImVec2(std::max(avail.x, 30.0f), std::max(avail.y, 30.0f));
-    const glm::dvec3 spacing = volume.spacing();
-    const glm::dvec3 worldSize = volume.extent();
     Cell cells[3], spare;
     if (enlarged < 0 || enlarged > 2) enlarged = -1;
-    float scale = layoutViews(worldSize, origin, avail, 6.0f, cells, &spare);
+    float scale = layoutViews(volume.extent(), origin, avail, 6.0f, cells, &spare);
     if (enlarged >= 0) {  // one view fills the space
-        const glm::dvec2 world = sliceWorldSize(dims, spacing, enlarged);
+        const glm::dvec2 world = sliceWorldSize(dims, volume.spacing(), enlarged);
         scale = float(std::max(1e-6, std::min(avail.x / world.x, avail.y / world.y)));
         cells[enlarged] = Cell{origin, origin + avail};
         spare = Cell{origin, origin};
     }
-    const auto shown = [&](int axis) { return enlarged < 0 || axis == enlarged; };
-
-    // Screen rows run against the image's rows in coronal and sagittal views when z grows downwards.
-    const auto displayRow = [&](int axis, int row) {
-        return !zUp && axis != kAxialAxis ? sliceImageSize(dims, axis).y - 1 - row : row;
-    };
 
     // Input first, for all three views, then drawing: a click shows in every view in the same frame.
-    ImGuiIO& io = ImGui::GetIO();
     for (int axis = 0; axis < 3; ++axis) {
-        View& view = views_[axis];
         if (!shown(axis)) {
-            view.imageMin = view.imageMax = origin;
+            views_[axis].imageMin = views_[axis].imageMax = origin;
             continue;
         }
-        const glm::dvec2 world = sliceWorldSize(dims, spacing, axis);
-        const ImVec2 size(std::max(1.0f, std::round(float(world.x) * scale)),
-                          std::max(1.0f, std::round(float(world.y) * scale)));
-        const ImVec2 cellSize = cells[axis].max - cells[axis].min;
-        view.imageMin = ImVec2(std::floor(cells[axis].min.x + 0.5f * (cellSize.x - size.x)),
-                               std::floor(cells[axis].min.y + 0.5f * (cellSize.y - size.y)));
-        view.imageMax = view.imageMin + size;
-
-        ImGui::SetCursorScreenPos(view.imageMin);
-        ImGui::PushID(axis);
-        ImGui::InvisibleButton("view", size, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
-        ImGui::PopID();
-        if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left))
-            enlarged = enlarged < 0 ? axis : -1;
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("double click: %s", enlarged < 0 ? "enlarge" : "all three views");
-        const glm::ivec2 imageSize = sliceImageSize(dims, axis);
-        glm::ivec2 pixel = pixelUnder(io.MousePos, view.imageMin, view.imageMax, imageSize);
-        pixel.y = displayRow(axis, pixel.y);
-        if (ImGui::IsItemActive() && ImGui::IsMouseDown(ImGuiMouseButton_Left))
-            cursor->voxel = sliceVoxel(dims, axis, cursor->voxel[axis], pixel);
-        if (ImGui::IsItemActive() && ImGui::IsMouseDown(ImGuiMouseButton_Right) &&
-            (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f))
-            cursor->window = dragWindow(cursor->window, io.MouseDelta.x, io.MouseDelta.y, range);
-        if (!ImGui::IsItemHovered() && !ImGui::IsItemActive()) continue;
-
-        hovered_ = sliceVoxel(dims, axis, cursor->voxel[axis], pixel);
-        int step = 0;
-        wheel_ += io.MouseWheel;
-        const int wheelSteps = int(wheel_);  // whole notches; a touchpad's fractions add up
-        wheel_ -= float(wheelSteps);
-        step += wheelSteps;
-        const auto pressed = [](ImGuiKey key) { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), true); };
-        if (pressed(ImGuiKey_UpArrow) || pressed(ImGuiKey_RightArrow)) step += 1;
-        if (pressed(ImGuiKey_DownArrow) || pressed(ImGuiKey_LeftArrow)) step -= 1;
-        if (pressed(ImGuiKey_PageUp)) step += 10;
-        if (pressed(ImGuiKey_PageDown)) step -= 10;
-        if (step != 0) {
-            cursor->voxel[axis] = std::clamp(cursor->voxel[axis] + step, 0, dims[axis] - 1);
-            (*hovered_)[axis] = cursor->voxel[axis];
-        }
+        placeView(axis, volume, scale, cells[axis].min, cells[axis].max);
+        viewInput(axis, dims, cursor, range);
     }
-
     ImDrawList* list = ImGui::GetWindowDrawList();
-    for (int axis = 0; axis < 3; ++axis) {
-        View& view = views_[axis];
-        if (!shown(axis)) continue;
-        upload(view, volume, axis, cursor->voxel[axis], cursor->window);
-        const ImVec2 a = view.imageMin, b = view.imageMax;
-        const glm::ivec2 imageSize = sliceImageSize(dims, axis);
-        const ImVec2 texel((b.x - a.x) / imageSize.x, (b.y - a.y) / imageSize.y);
-        const bool hot = hovered_ && ImGui::IsMouseHoveringRect(a, b);
-
-        const bool flipped = displayRow(axis, 0) != 0;
-        list->AddImage(ImTextureID(std::intptr_t(view.texture)), a, b, ImVec2(0, flipped ? 1 : 0),
-                       ImVec2(1, flipped ? 0 : 1));
-
-        // Crosshair: the other two slices as lines in their colours, with a
-        // gap around the crosshair voxel so that it stays visible.
-        glm::ivec2 centrePixel = slicePixel(dims, axis, cursor->voxel);
-        centrePixel.y = displayRow(axis, centrePixel.y);
-        const ImVec2 centre(a.x + (centrePixel.x + 0.5f) * texel.x, a.y + (centrePixel.y + 0.5f) * texel.y);
-        const float gapX = std::max(6.0f, texel.x), gapY = std::max(6.0f, texel.y);
-        const glm::ivec2 imageAxes = sliceImageAxes(axis);
-        const ImU32 vertical = axisColour(imageAxes.x, 0.8f), horizontal = axisColour(imageAxes.y, 0.8f);
-        list->AddLine(ImVec2(centre.x, a.y), ImVec2(centre.x, centre.y - gapY), vertical, 1.0f);
-        list->AddLine(ImVec2(centre.x, centre.y + gapY), ImVec2(centre.x, b.y), vertical, 1.0f);
-        list->AddLine(ImVec2(a.x, centre.y), ImVec2(centre.x - gapX, centre.y), horizontal, 1.0f);
-        list->AddLine(ImVec2(centre.x + gapX, centre.y), ImVec2(b.x, centre.y), horizontal, 1.0f);
-
-        // The voxel under the mouse, outlined once voxels are big enough to see.
-        if (hot && texel.x >= 4.0f && texel.y >= 4.0f) {
-            glm::ivec2 p = slicePixel(dims, axis, *hovered_);
-            p.y = displayRow(axis, p.y);
-            const ImVec2 q(a.x + p.x * texel.x, a.y + p.y * texel.y);
-            list->AddRect(q, q + texel, IM_COL32(255, 255, 255, 140));
-        }
-
-        // Frame and labels: the slice's name and index, and which way the axes grow.
-        list->AddRect(a - ImVec2(1, 1), b + ImVec2(1, 1), axisColour(axis, hot ? 1.0f : 0.75f), 0.0f, 0,
-                      hot ? 2.0f : 1.0f);
-        char text[64];
-        std::snprintf(text, sizeof text, "%s  %s %d/%d", sliceAxisName(axis), axisLetter(axis), cursor->voxel[axis],
-                      dims[axis] - 1);
-        list->PushClipRect(a, b, true);
-        labelAt(list, a + ImVec2(5, 3), axisColour(axis), text);
-        const bool rowsGrowDown = axis == kAxialAxis || flipped;  // does the image's row axis point down?
-        drawAxisGizmo(list, a, b, imageAxes, rowsGrowDown);
-        list->PopClipRect();
-    }
-
-    // The spare grid cell holds the volume's description and the controls.
-    if (spare.max.x - spare.min.x > 120.0f && spare.max.y - spare.min.y > 5 * ImGui::GetTextLineHeightWithSpacing()) {
-        ImGui::SetCursorScreenPos(spare.min + ImVec2(8, 4));
-        ImGui::PushTextWrapPos(spare.max.x - 4);
-        ImGui::BeginGroup();
-        ImGui::Text("%s", volume.name().c_str());
-        ImGui::TextDisabled("%d x %d x %d %s", dims.x, dims.y, dims.z, voxelTypeName(volume.type()));
-        ImGui::TextDisabled("spacing %g x %g x %g", spacing.x, spacing.y, spacing.z);
-        ImGui::Spacing();
-        ImGui::TextDisabled("click: move crosshair");
-        ImGui::TextDisabled("scroll, arrows: slice");
-        ImGui::TextDisabled("right-drag: window/level");
-        ImGui::TextDisabled("double click: enlarge");
-        ImGui::EndGroup();
-        ImGui::PopTextWrapPos();
-    }
-
-    // Readout: the voxel under the mouse, or else the crosshair's, in data units.
-    ImGui::SetCursorScreenPos(ImVec2(origin.x, origin.y + avail.y + ImGui::GetStyle().ItemSpacing.y));
-    const glm::ivec3 read = hovered_ ? *hovered_ : cursor->voxel;
-    ImGui::TextColored(hovered_ ? ImVec4(1, 1, 1, 1) : ImVec4(0.7f, 0.7f, 0.7f, 1), "%s (%d, %d, %d)  value %.6g",
-                       hovered_ ? "mouse" : "crosshair", read.x, read.y, read.z, volume.value(read.x, read.y, read.z));
-    char windowText[64];
-    std::snprintf(windowText, sizeof windowText, "  window %.5g .. %.5g", cursor->window.x, cursor->window.y);
-    if (sameLineIfFits(ImGui::CalcTextSize(windowText).x)) ImGui::TextDisabled("%s", windowText);
+    for (int axis = 0; axis < 3; ++axis)
+        if (shown(axis)) drawView(list, axis, volume, *cursor);
+    describeVolume(volume, spare.min, spare.max);
+    readout(volume, *cursor, ImVec2(origin.x, origin.y + avail.y + ImGui::GetStyle().ItemSpacing.y));
     ImGui::PopID();
 
     return cursor->voxel != before.voxel || cursor->window != before.window;

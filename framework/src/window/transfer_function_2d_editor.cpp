@@ -2,6 +2,7 @@
 // for its layout and mouse bindings) and the texture of its histogram.
 #include "voxlab_gl.h"  // first: it replaces the system GL headers
 
+#include "voxlab/gl_object.h"
 #include "voxlab/transfer_function_editor.h"
 
 #include <imgui.h>
@@ -43,7 +44,7 @@ struct CachedTexture {
     int valueBins = 0, gradientBins = 0;
     bool logScale = true;
     std::uint64_t contents = 0;  // a hash of the counts: a histogram recomputed in place is uploaded again
-    GLuint texture = 0;
+    GlTexture texture;
     std::uint64_t lastUse = 0;
 };
 
@@ -119,22 +120,21 @@ unsigned histogram2DTexture(const Histogram2D& histogram, bool logScale) {
     if (cache.size() >= kMaxCachedTextures) {
         auto oldest = std::min_element(cache.begin(), cache.end(),
                                        [](const auto& a, const auto& b) { return a.lastUse < b.lastUse; });
-        glDeleteTextures(1, &oldest->texture);
         cache.erase(oldest);
     }
     CachedTexture entry;
     entry.address = &histogram, entry.valueBins = histogram.valueBins, entry.gradientBins = histogram.gradientBins;
     entry.logScale = logScale, entry.contents = contents, entry.lastUse = ++clock;
-    glGenTextures(1, &entry.texture);
+    entry.texture = GlTexture::make();
     upload(entry.texture, histogram, logScale);
-    cache.push_back(entry);
-    return entry.texture;
+    cache.push_back(std::move(entry));
+    return cache.back().texture;
 }
 
 void releaseTransferFunctionEditorTextures() {
     auto& cache = textureCache();
-    if (glAvailable())
-        for (CachedTexture& entry : cache) glDeleteTextures(1, &entry.texture);
+    if (!glAvailable())  // the context is gone, and its objects with it
+        for (CachedTexture& entry : cache) entry.texture.release();
     cache.clear();
 }
 

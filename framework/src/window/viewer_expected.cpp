@@ -65,7 +65,7 @@ void upload(State& s, const Image& image) {
                 bytes[(std::size_t(image.height - 1 - y) * image.width + x) * 4 + c] =
                     (unsigned char)(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
             }
-    if (!s.expected.texture) glGenTextures(1, &s.expected.texture);
+    s.expected.texture.ensure();
     glBindTexture(GL_TEXTURE_2D, s.expected.texture);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image.width, image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());

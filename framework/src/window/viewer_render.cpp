@@ -305,7 +305,7 @@ void presentFrame(State& s) {
     if (!s.presenter) {
         const ShaderLibrary library({projectRoot() + "/shaders"});
         s.presenter = std::make_unique<ShaderProgram>(library, "voxlab/fullscreen.vert", "viewer/split_view.frag");
-        glGenVertexArrays(1, &s.presenterVao);
+        s.presenterVao = GlVertexArray::make();
     }
     const ShaderProgram* program = s.presenter.get();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "voxlab/gl_object.h"
 #include "voxlab/deck.h"
 #include "voxlab/gradients.h"
 #include "voxlab/ray_profile.h"
@@ -56,7 +57,8 @@ struct Side {
     std::string error;           // this side's last render error
     // While a large image is rendered a band at a time (viewer_tiles.cpp):
     // the image shown before it, under the bands not yet rendered.
-    unsigned previewTexture = 0, previewFbo = 0;
+    GlTexture previewTexture;
+    GlFramebuffer previewFbo;
 };
 
 // A large image rendered a band of rows at a time, one band per frame, so
@@ -82,7 +84,7 @@ struct ExpectedImage {
     bool available = false;
     Scene scene;             // the grading scene, at the image's size
     int width = 0, height = 0;
-    unsigned texture = 0;
+    GlTexture texture;
 };
 
 struct State {
@@ -162,7 +164,7 @@ struct State {
     CameraSpec profileCamera;       // ... with this camera (the marker shows while it is the same)
     ShaderWatcher watcher;
     std::unique_ptr<ShaderProgram> presenter;  // shaders/viewer/split_view.frag
-    unsigned presenterVao = 0;
+    GlVertexArray presenterVao;
 
     // The scene's other volumes and clip planes (viewer_scene_volumes.cpp).
     int editedLabel = -1;            // the label class whose function the editor edits; -1: the scene's

@@ -3,12 +3,13 @@
 // A student's first picture is the magenta-and-black checkerboard of the
 // starter code's stubs (shaders/voxlab/not_implemented.glsl). The picture
 // alone does not say what is missing, so after each full-quality render that
-// shows the checkerboard the line of missingFunctionsNotice (grading.h) is
+// shows the checkerboard the line of missingFunctionsNotice (stub_text.h) is
 // shown over the image and, when it changes, printed to the terminal.
 #include <cstdio>
 
 #include "viewer_state.h"
-#include "voxlab/grading.h"
+#include "voxlab/stub_text.h"
+#include "voxlab/stubs_reached.h"
 #include "voxlab/error.h"
 #include "voxlab/image.h"
 

@@ -23,10 +23,8 @@ namespace {
 // Copies a side's image now on screen (w x h, in its engine's framebuffer)
 // into its preview texture.
 void copyPreview(Side& side, const RenderEngine& shown, int w, int h) {
-    if (!side.previewTexture) {
-        glGenTextures(1, &side.previewTexture);
-        glGenFramebuffers(1, &side.previewFbo);
-    }
+    side.previewTexture.ensure();
+    side.previewFbo.ensure();
     glBindTexture(GL_TEXTURE_2D, side.previewTexture);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, nullptr);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);

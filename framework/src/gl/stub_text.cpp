@@ -1,9 +1,12 @@
-// voxlab: finding the starter code's stubs left in a stage (see grading.h).
+// voxlab: finding the starter code's stubs in a stage's text
+// (voxlab/stub_text.h).
 //
 // tools/make_assignments.py replaces each solution body with a stub that
 // calls not_implemented() (GLSL) or throws NotImplemented (C++). A function
 // whose body still holds that call is reported by name, so that a student
 // reads "mip_ray is not yet implemented" rather than a failed image.
+#include "voxlab/stub_text.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cstring>
@@ -11,9 +14,6 @@
 #include <fstream>
 
 #include "../io/line_scan.h"
-#include "voxlab/grading.h"
-#include "voxlab/image.h"
-#include "voxlab/render_engine.h"
 
 namespace voxlab {
 
@@ -113,22 +113,6 @@ std::vector<std::string> unimplementedFunctions(const std::string& stageFolder) 
         }
     }
     return names;
-}
-
-bool showsStubPattern(const Image& image) {
-    // The stub's magenta (1, 0, 1), exact in a float image and in one read
-    // back from 8 bits; a real rendering has it by chance in a pixel or two
-    // at most, the checkerboard in 32 of every 64 pixels it covers.
-    int magenta = 0;
-    for (std::size_t i = 0; i + 3 < image.rgba.size(); i += 4)
-        if (image.rgba[i] > 0.996f && image.rgba[i + 1] < 0.004f && image.rgba[i + 2] > 0.996f && ++magenta >= 8)
-            return true;
-    return false;
-}
-
-std::vector<std::string> stubsReached(RenderEngine& engine, const Scene& scene, const Image& image, int maxSide) {
-    if (engine.lastRenderStubs().empty() || !showsStubPattern(image)) return {};
-    return engine.stubsReached(scene, maxSide);
 }
 
 std::string stubListText(const std::vector<std::string>& stubs) {

@@ -1,6 +1,6 @@
 // voxlab: the C++ stage table and stage libraries (see stage_library.h).
 #include "voxlab/stage_library.h"
-#include "voxlab/scene.h"
+#include "voxlab/project_root.h"
 
 #include <dlfcn.h>
 #include <sys/stat.h>
@@ -14,27 +14,25 @@ namespace voxlab {
 namespace {
 
 CppStages& table() {
-    static CppStages stages{&planeBoxPolygon, &chooseSliceAxis, &cubeCase, &edgeCrossing, &splatOrder, &factorShearWarp};
+    static CppStages stages = [] {
+        CppStages t;
+#define VOXLAB_STAGE_LINKED(name, Result, Parameters) t.name = &name;
+        VOXLAB_CPP_STAGE_FUNCTIONS(VOXLAB_STAGE_LINKED)
+#undef VOXLAB_STAGE_LINKED
+        return t;
+    }();
     return stages;
 }
 
-// The one list of the table's functions: each with its name, the same
-// member of a second table, and a stub that says it is not implemented
-// (with the function's own signature).
+// Visits each of the table's functions: its name, the same member of a
+// second table, and a stub with its signature that says it is not
+// implemented.
 template <class Visit>
 void forEachStageFunction(CppStages& t, const CppStages& other, Visit visit) {
-    visit("planeBoxPolygon", t.planeBoxPolygon, other.planeBoxPolygon,
-          [](glm::dvec3, double, glm::dvec3, glm::dvec3) -> std::vector<glm::dvec3> {
-              throw NotImplemented("planeBoxPolygon");
-          });
-    visit("chooseSliceAxis", t.chooseSliceAxis, other.chooseSliceAxis,
-          [](glm::dvec3) -> int { throw NotImplemented("chooseSliceAxis"); });
-    visit("cubeCase", t.cubeCase, other.cubeCase, [](const double*, double) -> int { throw NotImplemented("cubeCase"); });
-    visit("edgeCrossing", t.edgeCrossing, other.edgeCrossing,
-          [](glm::dvec3, glm::dvec3, double, double, double) -> glm::dvec3 { throw NotImplemented("edgeCrossing"); });
-    visit("splatOrder", t.splatOrder, other.splatOrder, [](glm::dvec3) -> SplatOrder { throw NotImplemented("splatOrder"); });
-    visit("factorShearWarp", t.factorShearWarp, other.factorShearWarp,
-          [](const Camera&, glm::ivec3, glm::dvec3) -> ShearWarp { throw NotImplemented("factorShearWarp"); });
+#define VOXLAB_STAGE_VISIT(name, Result, Parameters) \
+    visit(#name, t.name, other.name, static_cast<Result(*) Parameters>([] Parameters -> Result { throw NotImplemented(#name); }));
+    VOXLAB_CPP_STAGE_FUNCTIONS(VOXLAB_STAGE_VISIT)
+#undef VOXLAB_STAGE_VISIT
 }
 
 }  // namespace

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# The framework's module layering (tools/check_modules.py) holds, and the
+# check catches a planted violation: a copy of framework/ in which the GL
+# module includes the grader's header, and one in which the volume module
+# reaches into the renderer's private headers.
+# usage: check_modules.sh PROJECT_DIR
+set -euo pipefail
+project=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+/usr/bin/python3 "$project/tools/check_modules.py" "$project"
+
+plant() {  # plant FILE LINE EXPECTED
+    rm -rf "$work/p" && mkdir -p "$work/p" && cp -r "$project/framework" "$work/p/"
+    echo "$2" >> "$work/p/$1"
+    if out=$(/usr/bin/python3 "$project/tools/check_modules.py" "$work/p"); then
+        echo "FAIL: a planted violation ($1: $2) passed"; exit 1
+    fi
+    grep -qF "$3" <<< "$out" || { echo "FAIL: the planted violation is not named: $out"; exit 1; }
+    echo "ok    planted in $1, caught: $(grep -F "$3" <<< "$out" | head -1)"
+}
+plant framework/src/gl/shader.cpp '#include "voxlab/grading.h"' "framework/src/gl/shader.cpp"
+plant framework/include/voxlab/volume.h '#include "../render/engine_internal.h"' "module volume includes ../render/engine_internal.h"

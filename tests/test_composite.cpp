@@ -28,19 +28,19 @@ namespace {
 // ---------------------------------------------------------------------------
 // CPU oracle pieces.
 
-// tfOracle() memoised for integer-valued volumes (every voxel value is an
+// cpuTransferFunction() memoised for integer-valued volumes (every voxel value is an
 // integer in [lo, hi]), so that 256^3 columns stay cheap.
 class Classifier {
 public:
     Classifier(std::vector<ControlPoint> pts, const Volume& v) : pts_(std::move(pts)) {
         if (v.type() != VoxelType::Float32) {
             lo_ = v.minValue();
-            for (double x = v.minValue(); x <= v.maxValue(); x += 1.0) table_.push_back(tfOracle(pts_, x));
+            for (double x = v.minValue(); x <= v.maxValue(); x += 1.0) table_.push_back(cpuTransferFunction(pts_, x));
         }
     }
     glm::dvec4 operator()(double v) const {
         if (!table_.empty()) return table_[std::size_t(v - lo_)];
-        return tfOracle(pts_, v);
+        return cpuTransferFunction(pts_, v);
     }
 
 private:

@@ -358,7 +358,7 @@ glm::dvec3 simulateStack(const Volume& v, const std::vector<ControlPoint>& tf, c
         const double value = stack.blendLayers
                                  ? (1.0 - w) * layerValue(v, a, below, p) + w * layerValue(v, a, above, p)
                                  : layerValue(v, a, w < 0.5 ? below : above, p);
-        const glm::dvec4 c = tfOracle(tf, value);
+        const glm::dvec4 c = cpuTransferFunction(tf, value);
         const double alpha = 1.0 - std::pow(1.0 - c.a, exponent);
         colour += transmittance * alpha * glm::dvec3(c);
         transmittance *= 1.0 - alpha;

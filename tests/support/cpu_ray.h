@@ -20,6 +20,7 @@
 
 #include "voxlab/camera.h"
 #include "voxlab/transfer_function.h"
+#include "cpu_tf.h"
 
 namespace voxlab::testing {
 
@@ -71,20 +72,6 @@ inline glm::dvec4 cpuCompositeRay(glm::dvec3 o, glm::dvec3 d, glm::dvec3 extent,
         if (opacity >= earlyTermination) break;
     }
     return {colour, opacity};
-}
-
-// The piecewise-linear transfer function from its points, in double.
-inline glm::dvec4 cpuTransferFunction(const std::vector<ControlPoint>& pts, double v) {
-    const auto rgba = [](const ControlPoint& p) { return glm::dvec4(glm::dvec3(p.color), double(p.alpha)); };
-    if (pts.empty()) return glm::dvec4(0.0);
-    if (!(v >= pts.front().value)) return rgba(pts.front());
-    if (v >= pts.back().value) return rgba(pts.back());
-    for (std::size_t i = 1; i < pts.size(); ++i)
-        if (v < pts[i].value) {
-            const double t = (v - pts[i - 1].value) / (pts[i].value - pts[i - 1].value);
-            return rgba(pts[i - 1]) + t * (rgba(pts[i]) - rgba(pts[i - 1]));
-        }
-    return rgba(pts.back());
 }
 
 }  // namespace voxlab::testing

@@ -1,6 +1,7 @@
 // Test support: the piecewise-linear transfer function, written for the
 // tests as an oracle: colour and alpha interpolated linearly between the
-// control points (sorted by value), clamped to the end points outside them.
+// control points (sorted by value), clamped to the end points outside them
+// (below the first, or NaN: the first; no points: transparent black).
 #pragma once
 
 #include <vector>
@@ -11,9 +12,10 @@
 
 namespace voxlab::testing {
 
-inline glm::dvec4 tfOracle(const std::vector<ControlPoint>& pts, double v) {
+inline glm::dvec4 cpuTransferFunction(const std::vector<ControlPoint>& pts, double v) {
     const auto rgba = [](const ControlPoint& p) { return glm::dvec4(glm::dvec3(p.color), double(p.alpha)); };
-    if (v <= pts.front().value) return rgba(pts.front());
+    if (pts.empty()) return glm::dvec4(0.0);
+    if (!(v >= pts.front().value)) return rgba(pts.front());
     if (v >= pts.back().value) return rgba(pts.back());
     for (std::size_t i = 1; i < pts.size(); ++i)
         if (v < pts[i].value) {

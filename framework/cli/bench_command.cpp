@@ -73,7 +73,9 @@ nlohmann::json memoryFigures(const RenderEngine& engine, const Volume& volume, s
 
 }  // namespace
 
-int benchCommand(int argc, char** argv) {
+namespace {
+
+std::vector<OptionSpec> benchOptions() {
     std::vector<OptionSpec> specs = sceneOptions();
     specs.push_back({"frames", "N", "frames to time (default 10)"});
     specs.push_back({"warmup", "N", "frames rendered first and not timed (default 2)"});
@@ -83,6 +85,125 @@ int benchCommand(int argc, char** argv) {
     specs.push_back({"implementation", "DIR", "stage shaders from DIR instead of reference/ (a submission)"});
     specs.push_back({"gl", "BACKEND", "headless OpenGL: auto, osmesa, egl"});
     specs.push_back({"help", "", "show this help"});
+    return specs;
+}
+
+// What a bench run measured.
+struct BenchFigures {
+    int frames = 0, warmup = 0;
+    double turn = 0.0;
+    std::vector<double> ms;             // each timed frame
+    bool counted = false;               // a ray caster whose samples are counted
+    double samples = 0.0, full = 0.0;   // all frames', and the last frame's, by the sampling rule
+    double taken = 0.0, skipped = 0.0;  // counted on the GPU at the last view
+    nlohmann::json memory;
+    std::string gl;
+    double median() const { return percentile(ms, 50.0); }
+    double samplesPerSecond() const {
+        double totalMs = 0.0;
+        for (double t : ms) totalMs += t;
+        return counted && totalMs > 0 ? samples / (totalMs / 1000.0) : 0.0;
+    }
+};
+
+// Renders warm-up and timed frames, turning the camera before each timed one.
+void timeFrames(RenderEngine& engine, const Volume& volume, Scene& scene, BenchFigures& f) {
+    CameraSpec& cam = scene.camera;
+    std::size_t uploadsBefore = 0;
+    for (int i = 0; i < f.warmup + f.frames; ++i) {
+        if (i >= f.warmup && f.turn != 0.0) {
+            if (!cam.view.empty()) axisViewOrbitAngles(cam.view, &cam.azimuth, &cam.elevation), cam.view.clear();
+            cam.azimuth += f.turn;
+        }
+        const auto t0 = std::chrono::steady_clock::now();
+        engine.renderOffscreen(scene);
+        glFinish();
+        const double elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        if (i + 1 == f.warmup) uploadsBefore = engine.brickUploads();
+        if (i < f.warmup) continue;
+        f.ms.push_back(elapsed);
+        if (f.counted) {
+            f.full = samplesByRule(volume, scene);
+            f.samples += f.full;
+        }
+    }
+    f.memory = memoryFigures(engine, volume, engine.brickUploads() - uploadsBefore, f.frames);
+}
+
+// One more frame, untimed, at the last view: the samples the shaders
+// actually took (with skipping and early termination), counted on the GPU.
+void countTakenSamples(RenderEngine& engine, const Scene& scene, const Args& args, BenchFigures& f) {
+    if (f.counted) {
+        f.taken = engine.countSamples(scene);
+        if (auto path = args.get("sample-map")) saveSampleMap(engine.readBack(), *path);
+    } else if (args.get("sample-map")) {
+        throw Error("option --sample-map: only ray-casting renderers without a cutting plane take samples");
+    }
+    f.skipped = f.full > 0.0 ? 1.0 - f.taken / f.full : 0.0;
+    if (std::abs(f.skipped) < 5e-4) f.skipped = 0.0;  // rays grazing the box: a sample more or less
+}
+
+void printJson(const Scene& scene, const BenchFigures& f) {
+    const double lowest = *std::min_element(f.ms.begin(), f.ms.end());
+    const double highest = *std::max_element(f.ms.begin(), f.ms.end());
+    nlohmann::json j = {{"dataset", scene.dataset},
+                        {"renderer", scene.renderer},
+                        {"width", scene.width},
+                        {"height", scene.height},
+                        {"step", scene.step},
+                        {"frames", f.frames},
+                        {"ms_per_frame", f.ms},
+                        {"median_ms", f.median()},
+                        {"q1_ms", percentile(f.ms, 25.0)},
+                        {"q3_ms", percentile(f.ms, 75.0)},
+                        {"min_ms", lowest},
+                        {"max_ms", highest},
+                        {"gl", f.gl},
+                        {"interpolation", interpolationName(scene.interpolation)},
+                        {"skip_empty_space", scene.skipEmptySpace}};
+    j.update(f.memory);
+    if (f.counted) {
+        j["samples_per_frame"] = f.samples / f.frames;
+        j["samples_per_second"] = f.samplesPerSecond();
+        j["samples_taken"] = f.taken;
+        j["skipped_fraction"] = f.skipped;
+    }
+    std::cout << j.dump(2) << "\n";
+}
+
+void printText(const Scene& scene, const Volume& volume, const Renderer& renderer, const BenchFigures& f) {
+    const double median = f.median(), q1 = percentile(f.ms, 25.0), q3 = percentile(f.ms, 75.0);
+    const double lowest = *std::min_element(f.ms.begin(), f.ms.end());
+    const double highest = *std::max_element(f.ms.begin(), f.ms.end());
+    const std::string skipping = renderer.objectOrder() ? "n/a (slices)" : scene.skipEmptySpace ? "on" : "off";
+    std::printf("%s, %s, %dx%d, step %g, %s interpolation, empty-space skipping %s, %d frames (after %d warm-up), "
+                "camera turning %g deg a frame\n",
+                volume.name().c_str(), scene.renderer.c_str(), scene.width, scene.height, scene.step,
+                interpolationName(scene.interpolation), skipping.c_str(), f.frames, f.warmup, f.turn);
+    std::printf("gl: %s\n", f.gl.c_str());
+    std::printf("ms/frame: median %.1f (quartiles %.1f .. %.1f, min %.1f, max %.1f); %.2f frames/s\n", median, q1, q3,
+                lowest, highest, median > 0 ? 1000.0 / median : 0.0);
+    const nlohmann::json& memory = f.memory;
+    if (memory["bricks"].get<std::size_t>() > 1)
+        std::printf("bricks: %zu (%dx%dx%d), %zu on the GPU at once (budget %.0f MiB), %.1f uploaded a frame\n",
+                    memory["bricks"].get<std::size_t>(), memory["brick_grid"][0].get<int>(),
+                    memory["brick_grid"][1].get<int>(), memory["brick_grid"][2].get<int>(),
+                    memory["bricks_resident"].get<std::size_t>(), memory["gpu_memory_budget_mib"].get<double>(),
+                    memory["brick_uploads_per_frame"].get<double>());
+    std::printf("memory: peak %.0f MiB resident (the volume: %.0f MiB)\n", memory["peak_rss_mib"].get<double>(),
+                memory["volume_mib"].get<double>());
+    if (f.counted) {
+        std::printf("samples: %.3g a frame by the sampling rule, %.3g a second\n", f.samples / f.frames,
+                    f.samplesPerSecond());
+        std::printf("skipped: %.1f%% of them (%.3g taken; empty space and early termination)\n", 100.0 * f.skipped,
+                    f.taken);
+    }
+}
+
+}  // namespace
+
+int benchCommand(int argc, char** argv) {
+    const std::vector<OptionSpec> specs = benchOptions();
     const Args args(specs, argc, argv, 2, "bench");
     if (args.has("help")) {
         std::cout << "usage: voxlab bench [SCENE.json] [--frames N] [--json] [scene options]\n\n"
@@ -94,98 +215,25 @@ int benchCommand(int argc, char** argv) {
         return 0;
     }
     Scene scene = sceneFromArgs(args, "bench");
-    const int frames = args.get("frames") ? parseInt(*args.get("frames"), "--frames") : 10;
-    const int warmup = args.get("warmup") ? parseInt(*args.get("warmup"), "--warmup") : 2;
-    const double turn = args.get("turn") ? parseNumber(*args.get("turn"), "--turn") : 0.5;
-    if (frames < 1 || frames > 100000) throw Error("option --frames: must be in 1..100000");
-    if (warmup < 0 || warmup > 1000) throw Error("option --warmup: must be in 0..1000");
+    BenchFigures f;
+    f.frames = args.get("frames") ? parseInt(*args.get("frames"), "--frames") : 10;
+    f.warmup = args.get("warmup") ? parseInt(*args.get("warmup"), "--warmup") : 2;
+    f.turn = args.get("turn") ? parseNumber(*args.get("turn"), "--turn") : 0.5;
+    if (f.frames < 1 || f.frames > 100000) throw Error("option --frames: must be in 1..100000");
+    if (f.warmup < 0 || f.warmup > 1000) throw Error("option --warmup: must be in 0..1000");
     const Renderer& renderer = rendererRegistry().get(scene.renderer);
     renderer.resolveParameters(scene.parameters);
-    const bool counted = samplesCountable(scene);
+    f.counted = samplesCountable(scene);
 
     const Volume volume = loadVolume(scene.dataset);
     auto context = createHeadlessContext(parseHeadlessBackend(args.get("gl").value_or("auto")));
+    f.gl = context->description();
     RenderEngine engine(args.get("implementation").value_or(""));
     engine.setVolume(volume);
-    CameraSpec& cam = scene.camera;
-    std::vector<double> ms;
-    std::size_t uploadsBefore = 0;
-    double samples = 0.0, full = 0.0;  // all frames', and the last frame's, by the sampling rule
-    for (int f = 0; f < warmup + frames; ++f) {
-        if (f >= warmup && turn != 0.0) {
-            if (!cam.view.empty()) axisViewOrbitAngles(cam.view, &cam.azimuth, &cam.elevation), cam.view.clear();
-            cam.azimuth += turn;
-        }
-        const auto t0 = std::chrono::steady_clock::now();
-        engine.renderOffscreen(scene);
-        glFinish();
-        const double elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        if (f + 1 == warmup) uploadsBefore = engine.brickUploads();
-        if (f < warmup) continue;
-        ms.push_back(elapsed);
-        if (counted) {
-            full = samplesByRule(volume, scene);
-            samples += full;
-        }
-    }
-    const nlohmann::json memory = memoryFigures(engine, volume, engine.brickUploads() - uploadsBefore, frames);
-    // One more frame, untimed, at the last view: the samples the shaders
-    // actually took (with skipping and early termination), counted on the GPU.
-    double taken = 0.0;
-    if (counted) {
-        taken = engine.countSamples(scene);
-        if (auto path = args.get("sample-map")) saveSampleMap(engine.readBack(), *path);
-    } else if (args.get("sample-map")) {
-        throw Error("option --sample-map: only ray-casting renderers without a cutting plane take samples");
-    }
-    double skipped = full > 0.0 ? 1.0 - taken / full : 0.0;
-    if (std::abs(skipped) < 5e-4) skipped = 0.0;  // rays grazing the box: a sample more or less
-    double totalMs = 0.0;
-    for (double t : ms) totalMs += t;
-    const double median = percentile(ms, 50.0), q1 = percentile(ms, 25.0), q3 = percentile(ms, 75.0);
-    const double lowest = *std::min_element(ms.begin(), ms.end()), highest = *std::max_element(ms.begin(), ms.end());
-    const double samplesPerSecond = counted && totalMs > 0 ? samples / (totalMs / 1000.0) : 0.0;
-    const std::string skipping = renderer.objectOrder() ? "n/a (slices)" : scene.skipEmptySpace ? "on" : "off";
-    if (args.has("json")) {
-        nlohmann::json j = {{"dataset", scene.dataset},   {"renderer", scene.renderer},
-                            {"width", scene.width},       {"height", scene.height},
-                            {"step", scene.step},         {"frames", frames},
-                            {"ms_per_frame", ms},         {"median_ms", median},
-                            {"q1_ms", q1},                {"q3_ms", q3},
-                            {"min_ms", lowest},           {"max_ms", highest},
-                            {"gl", context->description()},
-                            {"interpolation", interpolationName(scene.interpolation)},
-                            {"skip_empty_space", scene.skipEmptySpace}};
-        j.update(memory);
-        if (counted) {
-            j["samples_per_frame"] = samples / frames;
-            j["samples_per_second"] = samplesPerSecond;
-            j["samples_taken"] = taken;
-            j["skipped_fraction"] = skipped;
-        }
-        std::cout << j.dump(2) << "\n";
-        return 0;
-    }
-    std::printf("%s, %s, %dx%d, step %g, %s interpolation, empty-space skipping %s, %d frames (after %d warm-up), "
-                "camera turning %g deg a frame\n",
-                volume.name().c_str(), scene.renderer.c_str(), scene.width, scene.height, scene.step,
-                interpolationName(scene.interpolation), skipping.c_str(), frames, warmup, turn);
-    std::printf("gl: %s\n", context->description().c_str());
-    std::printf("ms/frame: median %.1f (quartiles %.1f .. %.1f, min %.1f, max %.1f); %.2f frames/s\n", median, q1, q3,
-                lowest, highest, median > 0 ? 1000.0 / median : 0.0);
-    if (memory["bricks"].get<std::size_t>() > 1)
-        std::printf("bricks: %zu (%dx%dx%d), %zu on the GPU at once (budget %.0f MiB), %.1f uploaded a frame\n",
-                    memory["bricks"].get<std::size_t>(), memory["brick_grid"][0].get<int>(),
-                    memory["brick_grid"][1].get<int>(), memory["brick_grid"][2].get<int>(),
-                    memory["bricks_resident"].get<std::size_t>(), memory["gpu_memory_budget_mib"].get<double>(),
-                    memory["brick_uploads_per_frame"].get<double>());
-    std::printf("memory: peak %.0f MiB resident (the volume: %.0f MiB)\n", memory["peak_rss_mib"].get<double>(),
-                memory["volume_mib"].get<double>());
-    if (counted) {
-        std::printf("samples: %.3g a frame by the sampling rule, %.3g a second\n", samples / frames, samplesPerSecond);
-        std::printf("skipped: %.1f%% of them (%.3g taken; empty space and early termination)\n", 100.0 * skipped,
-                    taken);
-    }
+    timeFrames(engine, volume, scene, f);
+    countTakenSamples(engine, scene, args, f);
+    if (args.has("json")) printJson(scene, f);
+    else printText(scene, volume, renderer, f);
     return 0;
 }
 

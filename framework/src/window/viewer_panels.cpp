@@ -114,17 +114,10 @@ void implementationSwitch(const char* label, State& s, Side& side) {
     ImGui::PopID();
 }
 
-void techniquePanel(State& s) {
-    const Volume& volume = *s.volume;
-    const glm::ivec3 d = volume.dims();
-    ImGui::Text("%s  %dx%dx%d %s", volume.name().c_str(), d.x, d.y, d.z, voxelTypeName(volume.type()));
-    ImGui::TextDisabled("values %g .. %g   spacing %g %g %g", volume.minValue(), volume.maxValue(),
-                        volume.spacing().x, volume.spacing().y, volume.spacing().z);
-    sectionTitle("technique");
-    if (rendererCombo("renderer", &s.scene.renderer, false)) s.scene.parameters.clear(), s.dirty = true;
-    if (parameterWidgets(rendererRegistry().get(s.scene.renderer), volume, &s.scene.parameters)) s.dirty = true;
-    implementationSwitch("left:", s, s.main);
+namespace {
 
+// The technique panel's sections (techniquePanel, below).
+void samplingSection(State& s, const Volume& volume) {
     sectionTitle("sampling");
     float step = float(s.scene.step);
     if (ImGui::SliderFloat("step", &step, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
@@ -156,6 +149,9 @@ void techniquePanel(State& s) {
         hi > lo)
         s.scene.window = glm::dvec2(lo, hi), s.dirty = true;
 
+}
+
+void cameraSection(State& s) {
     sectionTitle("camera");
     int proj = s.scene.camera.projection == Projection::Orthographic ? 0 : 1;
     if (ImGui::Combo("projection", &proj, "orthographic\0perspective\0"))
@@ -166,8 +162,9 @@ void techniquePanel(State& s) {
     }
     if (ImGui::SmallButton("reset")) s.scene.camera = CameraSpec(), s.dirty = true;
 
-    if (sceneVolumeSections(s)) s.dirty = true;
+}
 
+void splitSection(State& s) {
     sectionTitle("split view (S)");
     int split = int(s.split);
     const char* modes = s.hasReference ? "off\0student | reference\0difference\0"
@@ -183,6 +180,9 @@ void techniquePanel(State& s) {
         if (s.other.engine) implementationSwitch("right:", s, s.other);
     }
 
+}
+
+void panelsSection(State& s) {
     sectionTitle("panels");
     ImGui::Checkbox("transfer function", &s.showTransferFunction);
     ImGui::SameLine();
@@ -195,6 +195,10 @@ void techniquePanel(State& s) {
     ImGui::SameLine();
     if (ImGui::Button("help (H)")) s.showHelp = !s.showHelp;
 
+}
+
+// The scene file: its name, save (atomically) and open.
+void sceneFileSection(State& s) {
     if (s.scenePathField.empty()) s.scenePathField = s.scenePath;
     tf_editor::inputText("##scenepath", &s.scenePathField);
     ImGui::SameLine();
@@ -211,6 +215,27 @@ void techniquePanel(State& s) {
     }
     ImGui::SameLine();
     if (ImGui::Button("open")) s.dropped.push_back(s.scenePathField);
+}
+
+}  // namespace
+
+void techniquePanel(State& s) {
+    const Volume& volume = *s.volume;
+    const glm::ivec3 d = volume.dims();
+    ImGui::Text("%s  %dx%dx%d %s", volume.name().c_str(), d.x, d.y, d.z, voxelTypeName(volume.type()));
+    ImGui::TextDisabled("values %g .. %g   spacing %g %g %g", volume.minValue(), volume.maxValue(),
+                        volume.spacing().x, volume.spacing().y, volume.spacing().z);
+    sectionTitle("technique");
+    if (rendererCombo("renderer", &s.scene.renderer, false)) s.scene.parameters.clear(), s.dirty = true;
+    if (parameterWidgets(rendererRegistry().get(s.scene.renderer), volume, &s.scene.parameters)) s.dirty = true;
+    implementationSwitch("left:", s, s.main);
+
+    samplingSection(s, volume);
+    cameraSection(s);
+    if (sceneVolumeSections(s)) s.dirty = true;
+    splitSection(s);
+    panelsSection(s);
+    sceneFileSection(s);
 }
 
 // What the 2D editor starts from: the dataset's preset (datasets/tf2d/),

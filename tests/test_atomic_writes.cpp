@@ -45,8 +45,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string readBytes(const fs::path& path) { return readText(path); }
-
 void writeBytes(const fs::path& path, const std::string& bytes) {
     std::ofstream(path, std::ios::binary) << bytes;
 }
@@ -171,7 +169,7 @@ TEST_F(AtomicWrites, SuccessWritesTheFileAndNoTemporaries) {
     // The contents, read back by independent means where the format allows.
     const fs::path raw = dir_ / "raw.bin";
     writeFileAtomically(raw.string(), std::string("a\0b", 3));
-    EXPECT_EQ(readBytes(raw), std::string("a\0b", 3));
+    EXPECT_EQ(readText(raw), std::string("a\0b", 3));
     const Image img = noiseImage(40, 30);
     savePng(img, (dir_ / "img.png").string());
     const Image back = loadPng((dir_ / "img.png").string());
@@ -180,7 +178,7 @@ TEST_F(AtomicWrites, SuccessWritesTheFileAndNoTemporaries) {
         if (i % 4 != 3) ASSERT_EQ(toByte(back.rgba[i]), toByte(img.rgba[i])) << i;
     const Volume v = noiseVolume(16);
     saveNrrd(v, (dir_ / "v.nrrd").string(), false);
-    EXPECT_EQ(readBytes(dir_ / "v.nrrd").substr(readBytes(dir_ / "v.nrrd").size() - v.bytes().size()),
+    EXPECT_EQ(readText(dir_ / "v.nrrd").substr(readText(dir_ / "v.nrrd").size() - v.bytes().size()),
               std::string(v.bytes().begin(), v.bytes().end()));
 }
 
@@ -211,7 +209,7 @@ TEST_F(AtomicWrites, FailedWriteLeavesTheOldFileByteIdentical) {
         EXPECT_NE(message.find(target.string()), std::string::npos) << s.name << ": " << message;
         EXPECT_NE(message.find("File too large"), std::string::npos) << s.name << ": " << message;
         EXPECT_EQ(message.find('\n'), std::string::npos) << s.name << ": " << message;
-        EXPECT_EQ(readBytes(target), old) << s.name;
+        EXPECT_EQ(readText(target), old) << s.name;
         EXPECT_EQ(listFolder(folder), std::set<std::string>{fileName(s)}) << s.name << ": a temporary file is left";
     }
 }
@@ -233,7 +231,7 @@ TEST_F(AtomicWrites, MissingFolderAndFolderTargetsFailWithoutLeftovers) {
         const std::string message = errorOf([&] { s.save(target.string()); });
         EXPECT_NE(message.find(target.string()), std::string::npos) << s.name << ": " << message;
         EXPECT_TRUE(fs::is_directory(target)) << s.name;
-        EXPECT_EQ(readBytes(target / "inside"), "kept") << s.name;
+        EXPECT_EQ(readText(target / "inside"), "kept") << s.name;
         EXPECT_EQ(listFolder(folder), std::set<std::string>{fileName(s)}) << s.name << ": a temporary file is left";
     }
 }
@@ -245,7 +243,7 @@ TEST_F(AtomicWrites, SymbolicLinkAtTheTargetIsReplacedNotFollowed) {
         writeBytes(victim, "must not change");
         fs::create_symlink(victim, target);
         ASSERT_NO_THROW(s.save(target.string())) << s.name;
-        EXPECT_EQ(readBytes(victim), "must not change") << s.name;
+        EXPECT_EQ(readText(victim), "must not change") << s.name;
         EXPECT_FALSE(fs::is_symlink(target)) << s.name;
         EXPECT_TRUE(fs::is_regular_file(target)) << s.name;
         EXPECT_GT(fs::file_size(target), 1000u) << s.name;

@@ -77,12 +77,13 @@ struct FloatTarget {
     GlFramebuffer framebuffer;
     GlTexture color;
     GlRenderbuffer depth;
-    // New objects of this size in place of the old ones (Mesa's softpipe
-    // went on sampling a re-specified texture's old tiles: shear-warp's
-    // intermediate image after a scene with another size showed random
-    // colours). Throws voxlab::Error when the framebuffer is not complete.
-    void make(int width, int height);
+    // New objects of this size in place of the old ones. Throws
+    // voxlab::Error when the framebuffer is not complete.
+    void make(int width, int height) { makeTogether(this, 1, width, height); }
     bool made() const { return framebuffer.name() != 0; }
+    // `count` targets made anew together, every new object (storage
+    // included) before any old one goes (gl_object.cpp says why).
+    static void makeTogether(FloatTarget* targets, int count, int width, int height);
 };
 
 }  // namespace voxlab

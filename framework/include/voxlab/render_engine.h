@@ -261,7 +261,7 @@ private:
     // render's sample counts.
     FloatTarget layers_[3];
     FloatTarget intermediate_[2];
-    glm::ivec2 intermediateSize_[2] = {glm::ivec2(0), glm::ivec2(0)};
+    glm::ivec2 intermediateSize_{0};  // both targets
     int layerWidth_ = 0, layerHeight_ = 0;
     float valueScale_ = 1.0f, valueOffset_ = 0.0f;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_;

@@ -2,6 +2,7 @@
 #include "voxlab/gl_object.h"
 
 #include <string>
+#include <vector>
 
 #include "voxlab/error.h"
 #include "voxlab_gl.h"
@@ -22,13 +23,10 @@ void VertexArray::drop(unsigned n) { glDeleteVertexArrays(1, &n); }
 
 }  // namespace gl_object
 
-// The new objects are made, storage included, before the old ones go:
-// Mesa's softpipe caches a sampled texture's tiles by the address of its
-// storage, and storage allocated where a just-deleted texture's was is taken
-// for it (shear-warp's intermediate image, a second scene of another size
-// in one process: stripes of random colours, 13 % and 43 % of two grading
-// scenes' pixels).
-void FloatTarget::make(int width, int height) {
+namespace {
+
+// A new float target of this size, complete.
+FloatTarget newTarget(int width, int height) {
     FloatTarget next;
     next.framebuffer = GlFramebuffer::make();
     next.color = GlTexture::make();
@@ -47,7 +45,22 @@ void FloatTarget::make(int width, int height) {
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw Error("OpenGL: the float framebuffer (" + std::to_string(width) + "x" + std::to_string(height) +
                     ") is not complete");
-    *this = std::move(next);
+    return next;
+}
+
+}  // namespace
+
+// Every new object is made, storage included, before any old one goes:
+// Mesa's softpipe caches a sampled texture's tiles by the address of its
+// storage, and storage allocated where a just-deleted texture's was is taken
+// for that texture. Shear-warp's two intermediate images, remade one at a
+// time after a scene of another size in one process, showed the other's
+// stale tiles: 13 % and 43 % of two grading scenes' pixels garbage.
+void FloatTarget::makeTogether(FloatTarget* targets, int count, int width, int height) {
+    std::vector<FloatTarget> next;
+    next.reserve(std::size_t(count));
+    for (int i = 0; i < count; ++i) next.push_back(newTarget(width, height));
+    for (int i = 0; i < count; ++i) targets[i] = std::move(next[std::size_t(i)]);
 }
 
 }  // namespace voxlab

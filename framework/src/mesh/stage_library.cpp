@@ -123,21 +123,19 @@ std::string prebuilt(const std::string& installedName, const char* builtPath) {
 
 }  // namespace
 
-std::string stageExportsObject() {
-#ifdef VOXLAB_STAGE_EXPORTS_OBJECT
-    return prebuilt("stage_exports.o", VOXLAB_STAGE_EXPORTS_OBJECT);
-#else
-    return prebuilt("stage_exports.o", nullptr);
+// Builds without them (the browser's, the fuzzers') have no build paths.
+#ifndef VOXLAB_STAGE_EXPORTS_OBJECT
+#define VOXLAB_STAGE_EXPORTS_OBJECT nullptr
 #endif
-}
+#ifndef VOXLAB_STAGE_PRELUDE
+#define VOXLAB_STAGE_PRELUDE nullptr
+#endif
+
+std::string stageExportsObject() { return prebuilt("stage_exports.o", VOXLAB_STAGE_EXPORTS_OBJECT); }
 
 // The prelude is used only with its precompiled form beside it.
 std::string stagePreludeHeader() {
-#ifdef VOXLAB_STAGE_PRELUDE
     const std::string header = prebuilt("prelude/voxlab_stage_prelude.h", VOXLAB_STAGE_PRELUDE);
-#else
-    const std::string header = prebuilt("prelude/voxlab_stage_prelude.h", nullptr);
-#endif
     return !header.empty() && regularFileExists(header + ".gch") ? header : "";
 }
 
@@ -150,8 +148,8 @@ std::vector<std::string> stageLibraryBuildCommand(const std::vector<std::string>
                                     "-I" + projectRoot() + "/framework/include"};
     if (!prelude.empty()) cmd.insert(cmd.end(), {"-include", prelude});
     cmd.insert(cmd.end(), sources.begin(), sources.end());
-    const std::string prebuilt = stageExportsObject();
-    cmd.push_back(prebuilt.empty() ? projectRoot() + "/framework/stage_library/stage_exports.cpp" : prebuilt);
+    const std::string exports = stageExportsObject();
+    cmd.push_back(exports.empty() ? projectRoot() + "/framework/stage_library/stage_exports.cpp" : exports);
     cmd.push_back("-o");
     cmd.push_back(output);
     return cmd;

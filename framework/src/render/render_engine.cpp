@@ -205,22 +205,18 @@ void RenderEngine::noteSources(const ShaderProgram& prog) {
 }
 
 void RenderEngine::ensureTarget(int width, int height) {
-    if (target_.framebuffer && width == fboWidth_ && height == fboHeight_) return;
+    if (target_.made() && width == fboWidth_ && height == fboHeight_) return;
     target_.make(width, height);
     fboWidth_ = width, fboHeight_ = height;
 }
 
-// Both targets are made anew together when the size changes, every new
-// object before any old one goes: Mesa's softpipe caches the tiles of a
-// texture a unit sampled by the address of its storage, and a target made
-// where the other target's freed storage was showed that one's tiles
-// (shear-warp after a scene of another size in one process: stripes of
-// garbage over 13 % and 43 % of two grading scenes' pixels).
+// Both targets are made anew together when the size changes
+// (FloatTarget::makeTogether: a target remade alone could take the other's
+// freed storage, and softpipe then sampled that one's tiles).
 void RenderEngine::ensureIntermediate(int target, glm::ivec2 size) {
-    if (intermediate_[target].made() && intermediateSize_[target] == size) return;
-    FloatTarget next[2];
-    for (FloatTarget& t : next) {
-        t.make(size.x, size.y);
+    if (intermediate_[target].made() && intermediateSize_ == size) return;
+    FloatTarget::makeTogether(intermediate_, 2, size.x, size.y);
+    for (const FloatTarget& t : intermediate_) {
         // Read back with bilinear filtering (the warp), clamped to transparent edges by the reader.
         glBindTexture(GL_TEXTURE_2D, t.color);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -228,15 +224,12 @@ void RenderEngine::ensureIntermediate(int target, glm::ivec2 size) {
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     }
-    for (int i = 0; i < 2; ++i) {
-        intermediate_[i] = std::move(next[i]);
-        intermediateSize_[i] = size;
-    }
+    intermediateSize_ = size;
 }
 
 void RenderEngine::ensureLayers(int width, int height) {
-    if (layers_[0].framebuffer && width == layerWidth_ && height == layerHeight_) return;
-    for (FloatTarget& layer : layers_) layer.make(width, height);
+    if (layers_[0].made() && width == layerWidth_ && height == layerHeight_) return;
+    FloatTarget::makeTogether(layers_, 3, width, height);  // they take turns as each other's input
     layerWidth_ = width, layerHeight_ = height;
 }
 

@@ -25,7 +25,6 @@ void VolumeTextures::set(const Volume& volume, unsigned long generation, std::si
     volume_ = &volume;
     generation_ = generation;
     uploads_ = bytes_ = 0;
-    pool_.clear();
     pool_.resize(std::min(layout_.resident, layout_.bricks.size()));
     for (GlTexture& t : pool_) t = GlTexture::make();
     holder_.assign(pool_.size(), -1);

@@ -7,9 +7,13 @@
 //    and rays (perspective and orthographic), the bricks a ray passes
 //    through, found by stepping along it, come in the order's order;
 //  - every ray-casting renderer's image of a bricked volume (a budget that
-//    forces 27 bricks, only two of them on the GPU at once) against the same
+//    forces 18 bricks, 11 of them on the GPU at once) against the same
 //    scene unbricked, with and without empty-space skipping, within one
 //    grey level;
+//  - bricks that stay on the GPU: a settled camera uploads nothing, a
+//    turning one only the bricks the pool cannot hold (counted against the
+//    bound that arithmetic gives), and bricks out of view or empty are
+//    neither drawn nor uploaded, with the image unchanged;
 //  - a volume longer than the largest texture (2100 x 128 x 128), which has
 //    no unbricked render, against MIP and first hit computed here on the CPU
 //    from the voxels;
@@ -87,6 +91,21 @@ TEST(BrickPlan, BricksOwnEveryVoxelOnceAndFitTheLimits) {
         for (const VolumeBrick& b : l.bricks) largest = std::max(largest, b.bytes);
         EXPECT_LE(std::min(l.resident, l.bricks.size()) * largest, std::max(c.budget, largest));
     }
+}
+
+TEST(BrickPlan, AVolumeLargerThanTheBudgetKeepsEightBricksOnTheGpu) {
+    // 16 MiB of voxels in 12 MiB: bricks small enough that at least eight
+    // fit at once, so that a frame finds most of its bricks still there.
+    const BrickLayout l = planBricks({256, 256, 256}, 1, 2048, 12 * kMiB);
+    std::size_t largest = 0;
+    for (const VolumeBrick& b : l.bricks) largest = std::max(largest, b.bytes);
+    EXPECT_GE(l.resident, kResidentBricksAimed);
+    EXPECT_LT(l.resident, l.bricks.size());
+    EXPECT_LE(l.resident * largest, 12 * kMiB);
+    // Where bricks of 16 voxels a side cannot make eight fit, as many as fit.
+    const BrickLayout tight = planBricks({256, 256, 256}, 4, 2048, 2 * 22 * 22 * 22 * 4);
+    EXPECT_GE(tight.resident, 1u);
+    EXPECT_LT(tight.resident, kResidentBricksAimed);
 }
 
 TEST(BrickPlan, ABudgetThatHoldsNoBrickIsAOneLineError) {
@@ -170,13 +189,12 @@ TEST_P(BrickedKeepsTheImage, OnBonsai) {
         scene.gpuMemoryMiB.reset();
         const Image whole = asPng(engine().render(scene));
         ASSERT_FALSE(engine().brickLayout().bricked());
-        // 16 MiB of voxels in 2 MiB: 2x2x3 bricks of 134x134x92 voxels with
-        // their aprons (1.65 MiB), one on the GPU at a time, so every pass
-        // uploads its brick again.
-        scene.gpuMemoryMiB = 2.0;
+        // 16 MiB of voxels in 12 MiB: 2x3x3 bricks, 11 on the GPU at a
+        // time, so that a frame uploads some of its bricks again.
+        scene.gpuMemoryMiB = 12.0;
         const Image bricked = asPng(engine().render(scene));
-        ASSERT_EQ(engine().brickLayout().bricks.size(), 12u);
-        EXPECT_EQ(engine().brickLayout().resident, 1u);
+        ASSERT_EQ(engine().brickLayout().bricks.size(), 18u);
+        EXPECT_EQ(engine().brickLayout().resident, 11u);
         const ImageMetrics m = compareForGrading(whole, bricked, Tolerance{});
         EXPECT_LE(m.maxDifference, 1.0) << c.name << (skipping ? " with skipping" : "") << ": " << toJson(m).dump();
         double lit = 0.0;
@@ -192,7 +210,7 @@ TEST_P(BrickedKeepsTheImage, OnBonsai) {
         // isosurface takes one sample before each brick's face again.
         scene.gpuMemoryMiB.reset();
         const double all = engine().countSamples(scene);
-        scene.gpuMemoryMiB = 2.0;
+        scene.gpuMemoryMiB = 12.0;
         const double inBricks = engine().countSamples(scene);
         const std::string what = std::string(c.name) + (skipping ? " with skipping" : "");
         if (c.sameSamples && !skipping)
@@ -232,6 +250,96 @@ const BrickCase kBrickCases[] = {
 
 INSTANTIATE_TEST_SUITE_P(Renderers, BrickedKeepsTheImage, ::testing::ValuesIn(kBrickCases),
                          [](const ::testing::TestParamInfo<BrickCase>& info) { return std::string(info.param.name); });
+
+// Bricks that stay on the GPU (render/volume_textures.h), counted through
+// the engine: the passes drawn and the bricks uploaded.
+class BrickResidency : public GlTest {
+protected:
+    struct Frame {
+        std::size_t drawn = 0, uploaded = 0;
+        Image image;
+    };
+    Frame renderCounted(const Scene& scene) {
+        const std::size_t drawn = engine().bricksDrawn(), uploads = engine().brickUploads();
+        Frame f;
+        f.image = asPng(engine().render(scene));
+        f.drawn = engine().bricksDrawn() - drawn;
+        f.uploaded = engine().brickUploads() - uploads;
+        return f;
+    }
+    Image unbricked(Scene scene) {
+        scene.gpuMemoryMiB.reset();
+        return asPng(engine().render(scene));
+    }
+    static const Volume& bonsai() {
+        static const Volume v = loadVolume(datasetPath("bonsai.nrrd"));
+        return v;
+    }
+};
+
+TEST_F(BrickResidency, ASettledCameraUploadsNothing) {
+    // The isosurface at 200 (the pot) lies in a few of the 27 bricks: the
+    // others are empty for it and are neither drawn nor uploaded, and the
+    // ones drawn fit the pool, so the second frame of the same view
+    // uploads nothing.
+    engine().setVolume(bonsai());
+    Scene scene = bonsaiScene({"iso", {{"isovalue", 200}}});
+    scene.skipEmptySpace = true;
+    scene.gpuMemoryMiB = 8.0;
+    const Frame first = renderCounted(scene);
+    const BrickLayout& l = engine().brickLayout();
+    ASSERT_EQ(l.bricks.size(), 27u);
+    ASSERT_GE(l.resident, 8u);
+    EXPECT_GT(first.drawn, 0u);
+    EXPECT_LT(first.drawn, l.bricks.size()) << "empty bricks are drawn";
+    EXPECT_LE(first.drawn, l.resident);
+    EXPECT_EQ(first.uploaded, first.drawn);
+    const Frame second = renderCounted(scene);
+    EXPECT_EQ(second.drawn, first.drawn);
+    EXPECT_EQ(second.uploaded, 0u);
+    EXPECT_LE(compareForGrading(unbricked(scene), second.image, Tolerance{}).maxDifference, 1.0);
+}
+
+TEST_F(BrickResidency, ATurningCameraUploadsOnlyWhatThePoolCannotHold) {
+    // Compositing draws all 18 bricks, 11 fit: with the last frame's order
+    // as the forecast a frame reuses at least 10 of the bricks it left
+    // (plain least-recently-used eviction would reuse none: every brick
+    // would be evicted just before the frame comes back to it).
+    engine().setVolume(bonsai());
+    Scene scene = bonsaiScene({"composite", {}, Interpolation::Trilinear, true});
+    scene.gpuMemoryMiB = 12.0;
+    renderCounted(scene);  // cold
+    const std::size_t resident = engine().brickLayout().resident;
+    ASSERT_EQ(resident, 11u);
+    for (int f = 0; f < 4; ++f) {
+        scene.camera.azimuth += 0.5;
+        const Frame frame = renderCounted(scene);
+        EXPECT_EQ(frame.drawn, 18u);
+        EXPECT_LE(frame.uploaded, frame.drawn - resident + 1) << "frame " << f;
+        if (f == 3) EXPECT_LE(compareForGrading(unbricked(scene), frame.image, Tolerance{}).maxDifference, 1.0);
+    }
+}
+
+TEST_F(BrickResidency, BricksOutOfViewAreNeitherDrawnNorUploaded) {
+    // Looked at along -y, orthographic, magnified 4 times: the image shows
+    // the middle quarter of the 256-voxel box across x and z (voxels 96 to
+    // 160), which lies inside the middle brick column's 86 to 172; only
+    // that column's three bricks are drawn (MIP draws every brick it
+    // sees: it skips no empty space).
+    engine().setVolume(bonsai());
+    Scene scene = bonsaiScene({"mip", {}, Interpolation::Trilinear, false, false, Projection::Orthographic});
+    scene.camera.view = "-y";
+    scene.camera.zoom = 4.0;
+    scene.gpuMemoryMiB = 8.0;
+    const Frame zoomed = renderCounted(scene);
+    const BrickLayout& l = engine().brickLayout();
+    ASSERT_EQ(l.bricks.size(), 27u);
+    ASSERT_EQ(l.bricks[13].lo, glm::ivec3(86));  // the middle brick
+    ASSERT_EQ(l.bricks[13].hi, glm::ivec3(172));
+    EXPECT_EQ(zoomed.drawn, 3u);
+    EXPECT_LE(zoomed.uploaded, zoomed.drawn);
+    EXPECT_LE(compareForGrading(unbricked(scene), zoomed.image, Tolerance{}).maxDifference, 1.0);
+}
 
 // 2100 x 128 x 128: longer than llvmpipe's largest 3D texture (2048), so
 // there is no unbricked image to compare with. The volume is f(x) only (a

@@ -9,6 +9,17 @@
 // how many of those the shaders really took, counted on the GPU in one more
 // frame (RenderEngine::countSamples): the rest were skipped, by empty-space
 // skipping or early ray termination.
+//
+// Each frame is timed by the wall clock, from the first GL call to
+// glFinish(), and by the GL's own clock: two GL_TIMESTAMP counters around
+// the frame's commands (ARB_timer_query, core in 3.3), the first flushed at
+// once so that the GL stamps it before the frame's work starts. On a GPU
+// their difference is the GPU's time for the frame, without the CPU's part
+// of it. (A GL_TIME_ELAPSED query measures the same on a GPU, but llvmpipe
+// stamps it per 64x64 tile and keeps each thread's last tile, so it would
+// say 20 ms for an 800 ms frame there: timestamps it is.) A driver whose
+// timer counts no bits has no GPU time. A volume drawn in bricks also says
+// how many bricks a frame drew and uploaded.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -24,6 +35,7 @@
 #include "voxlab/error.h"
 #include "voxlab/flip.h"
 #include "voxlab/gl_context.h"
+#include "voxlab/gl_object.h"
 #include "voxlab/ray_profile.h"
 #include "voxlab/render_engine.h"
 #include "voxlab/volume.h"
@@ -56,16 +68,55 @@ double percentile(std::vector<double> v, double p) {
     return i + 1 < v.size() ? v[i] + (at - double(i)) * (v[i + 1] - v[i]) : v.back();
 }
 
+// The GL's clock around a frame (see the top of this file).
+class GpuTimer {
+public:
+    GpuTimer() {
+        GLint bits = 0;
+        glGetQueryiv(GL_TIMESTAMP, GL_QUERY_COUNTER_BITS, &bits);
+        if (bits > 0) before_ = GlQuery::make(), after_ = GlQuery::make();
+    }
+    bool available() const { return before_.name() != 0; }
+    void begin() const {
+        if (available()) glQueryCounter(before_, GL_TIMESTAMP), glFlush();
+    }
+    void end() const {
+        if (available()) glQueryCounter(after_, GL_TIMESTAMP);
+    }
+    // Milliseconds between the two stamps (waits for them).
+    double milliseconds() const {
+        GLuint64 from = 0, to = 0;
+        if (!available()) return 0.0;
+        glGetQueryObjectui64v(before_, GL_QUERY_RESULT, &from);
+        glGetQueryObjectui64v(after_, GL_QUERY_RESULT, &to);
+        return to > from ? double(to - from) * 1e-6 : 0.0;
+    }
+
+private:
+    GlQuery before_, after_;
+};
+
+// What the bricks cost over the timed frames: passes drawn, bricks and
+// bytes uploaded; and what the first frame of all (cold) and the last
+// (the camera settled, when --turn is 0) uploaded.
+struct BrickTraffic {
+    std::size_t drawn = 0, uploads = 0, bytes = 0, firstFrameUploads = 0, lastFrameUploads = 0;
+};
+
 // The volume's textures: how many bricks, how many stay on the GPU, how
-// many were uploaded a frame; and the process's peak memory.
-nlohmann::json memoryFigures(const RenderEngine& engine, const Volume& volume, std::size_t uploads, int frames) {
+// many a frame drew and uploaded; and the process's peak memory.
+nlohmann::json memoryFigures(const RenderEngine& engine, const Volume& volume, const BrickTraffic& t, int frames) {
     const BrickLayout& layout = engine.brickLayout();
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     return {{"bricks", layout.bricks.size()},
             {"brick_grid", {layout.count.x, layout.count.y, layout.count.z}},
             {"bricks_resident", layout.resident},
-            {"brick_uploads_per_frame", double(uploads) / frames},
+            {"bricks_drawn_per_frame", double(t.drawn) / frames},
+            {"brick_uploads_per_frame", double(t.uploads) / frames},
+            {"brick_mib_uploaded_per_frame", double(t.bytes) / frames / double(1 << 20)},
+            {"brick_uploads_first_frame", t.firstFrameUploads},
+            {"brick_uploads_last_frame", t.lastFrameUploads},
             {"gpu_memory_budget_mib", double(layout.budgetBytes) / double(1 << 20)},
             {"volume_mib", double(volume.bytes().size()) / double(1 << 20)},
             {"peak_rss_mib", double(usage.ru_maxrss) / 1024.0}};
@@ -93,6 +144,7 @@ struct BenchFigures {
     int frames = 0, warmup = 0;
     double turn = 0.0;
     std::vector<double> ms;             // each timed frame
+    std::vector<double> gpuMs;          // the same by the GL's clock (none when it has no timer)
     bool counted = false;               // a ray caster whose samples are counted
     double samples = 0.0, full = 0.0;   // all frames', and the last frame's, by the sampling rule
     double taken = 0.0, skipped = 0.0;  // counted on the GPU at the last view
@@ -109,25 +161,35 @@ struct BenchFigures {
 // Renders warm-up and timed frames, turning the camera before each timed one.
 void timeFrames(RenderEngine& engine, const Volume& volume, Scene& scene, BenchFigures& f) {
     CameraSpec& cam = scene.camera;
-    std::size_t uploadsBefore = 0;
+    const GpuTimer timer;
+    BrickTraffic before, traffic;
     for (int i = 0; i < f.warmup + f.frames; ++i) {
         if (i >= f.warmup && f.turn != 0.0) {
             if (!cam.view.empty()) axisViewOrbitAngles(cam.view, &cam.azimuth, &cam.elevation), cam.view.clear();
             cam.azimuth += f.turn;
         }
+        if (i == f.warmup) before = {engine.bricksDrawn(), engine.brickUploads(), engine.brickBytesUploaded()};
+        const std::size_t uploads = engine.brickUploads();
         const auto t0 = std::chrono::steady_clock::now();
+        timer.begin();
         engine.renderOffscreen(scene);
+        timer.end();
         glFinish();
         const double elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        if (i + 1 == f.warmup) uploadsBefore = engine.brickUploads();
+        if (i == 0) traffic.firstFrameUploads = engine.brickUploads() - uploads;
+        traffic.lastFrameUploads = engine.brickUploads() - uploads;
         if (i < f.warmup) continue;
         f.ms.push_back(elapsed);
+        if (timer.available()) f.gpuMs.push_back(timer.milliseconds());
         if (f.counted) {
             f.full = samplesByRule(volume, scene);
             f.samples += f.full;
         }
     }
-    f.memory = memoryFigures(engine, volume, engine.brickUploads() - uploadsBefore, f.frames);
+    traffic.drawn = engine.bricksDrawn() - before.drawn;
+    traffic.uploads = engine.brickUploads() - before.uploads;
+    traffic.bytes = engine.brickBytesUploaded() - before.bytes;
+    f.memory = memoryFigures(engine, volume, traffic, f.frames);
 }
 
 // One more frame, untimed, at the last view: the samples the shaders
@@ -158,6 +220,8 @@ void printJson(const Scene& scene, const BenchFigures& f) {
                         {"q3_ms", percentile(f.ms, 75.0)},
                         {"min_ms", lowest},
                         {"max_ms", highest},
+                        {"gpu_ms_per_frame", f.gpuMs},
+                        {"gpu_median_ms", f.gpuMs.empty() ? nlohmann::json() : nlohmann::json(percentile(f.gpuMs, 50.0))},
                         {"gl", f.gl},
                         {"interpolation", interpolationName(scene.interpolation)},
                         {"skip_empty_space", scene.skipEmptySpace}};
@@ -183,13 +247,26 @@ void printText(const Scene& scene, const Volume& volume, const Renderer& rendere
     std::printf("gl: %s\n", f.gl.c_str());
     std::printf("ms/frame: median %.1f (quartiles %.1f .. %.1f, min %.1f, max %.1f); %.2f frames/s\n", median, q1, q3,
                 lowest, highest, median > 0 ? 1000.0 / median : 0.0);
+    if (!f.gpuMs.empty()) {
+        const double gpuMedian = percentile(f.gpuMs, 50.0);
+        std::printf("GPU ms/frame (GL timestamps): median %.1f (quartiles %.1f .. %.1f); %.0f%% of the wall time\n",
+                    gpuMedian, percentile(f.gpuMs, 25.0), percentile(f.gpuMs, 75.0),
+                    median > 0 ? 100.0 * gpuMedian / median : 0.0);
+    } else {
+        std::printf("GPU ms/frame: n/a (the GL's timer counts no bits)\n");
+    }
     const nlohmann::json& memory = f.memory;
-    if (memory["bricks"].get<std::size_t>() > 1)
-        std::printf("bricks: %zu (%dx%dx%d), %zu on the GPU at once (budget %.0f MiB), %.1f uploaded a frame\n",
+    if (memory["bricks"].get<std::size_t>() > 1) {
+        std::printf("bricks: %zu (%dx%dx%d), %zu on the GPU at once (budget %.0f MiB)\n",
                     memory["bricks"].get<std::size_t>(), memory["brick_grid"][0].get<int>(),
                     memory["brick_grid"][1].get<int>(), memory["brick_grid"][2].get<int>(),
-                    memory["bricks_resident"].get<std::size_t>(), memory["gpu_memory_budget_mib"].get<double>(),
-                    memory["brick_uploads_per_frame"].get<double>());
+                    memory["bricks_resident"].get<std::size_t>(), memory["gpu_memory_budget_mib"].get<double>());
+        std::printf("bricks a frame: %.1f drawn, %.1f uploaded (%.1f MiB); the first frame uploaded %zu, the last %zu\n",
+                    memory["bricks_drawn_per_frame"].get<double>(), memory["brick_uploads_per_frame"].get<double>(),
+                    memory["brick_mib_uploaded_per_frame"].get<double>(),
+                    memory["brick_uploads_first_frame"].get<std::size_t>(),
+                    memory["brick_uploads_last_frame"].get<std::size_t>());
+    }
     std::printf("memory: peak %.0f MiB resident (the volume: %.0f MiB)\n", memory["peak_rss_mib"].get<double>(),
                 memory["volume_mib"].get<double>());
     if (f.counted) {

@@ -1,8 +1,8 @@
 #pragma once
 // voxlab: OpenGL object names with an owner.
 //
-// A GlObject holds one name (a texture, framebuffer, renderbuffer, buffer
-// or vertex array): made by make() or ensure() (glGen*), deleted when its
+// A GlObject holds one name (a texture, framebuffer, renderbuffer, buffer,
+// vertex array or query): made by make() or ensure() (glGen*), deleted when its
 // owner goes or reset() is called (glDelete*), moved but never copied. It
 // converts to the name, so it is passed to GL as the name itself
 // (glBindTexture(GL_TEXTURE_3D, texture)). Objects are made and deleted on
@@ -21,6 +21,7 @@ struct Framebuffer { static void make(unsigned* n); static void drop(unsigned n)
 struct Renderbuffer { static void make(unsigned* n); static void drop(unsigned n); };
 struct Buffer { static void make(unsigned* n); static void drop(unsigned n); };
 struct VertexArray { static void make(unsigned* n); static void drop(unsigned n); };
+struct Query { static void make(unsigned* n); static void drop(unsigned n); };
 }  // namespace gl_object
 
 template <class Kind>
@@ -70,6 +71,7 @@ using GlFramebuffer = GlObject<gl_object::Framebuffer>;
 using GlRenderbuffer = GlObject<gl_object::Renderbuffer>;
 using GlBuffer = GlObject<gl_object::Buffer>;
 using GlVertexArray = GlObject<gl_object::VertexArray>;
+using GlQuery = GlObject<gl_object::Query>;
 
 // A float RGBA colour target with a 24-bit depth buffer, its three objects
 // owned (the render engine's image, layers and intermediate images).

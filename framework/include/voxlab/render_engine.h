@@ -162,9 +162,15 @@ public:
     // the machine's memory for a software renderer, else 1 GiB.
     std::size_t defaultGpuMemoryBudget() const { return defaultBudget_; }
     // The layout of the last render's volume textures (one brick unbricked),
-    // and the bricks uploaded since the volume or its budget last changed.
+    // and the bricks uploaded since the engine began (all volumes, all budgets).
+    // The bricks' passes drawn and the bytes uploaded, counted the same
+    // way. A brick whose pass could change no pixel (out of view, or empty
+    // for the classification with skipping on) is neither drawn nor
+    // uploaded.
     const BrickLayout& brickLayout() const;
     std::size_t brickUploads() const;
+    std::size_t brickBytesUploaded() const;
+    std::size_t bricksDrawn() const { return bricksDrawn_; }
 
 private:
     // One transfer-function table on the GPU and what it was baked from.
@@ -241,6 +247,7 @@ private:
     std::size_t budgetFor(const Scene& scene) const;
     BrickCombine checkBricked(const Scene& scene, const Pass& pass) const;
     void bindVolumeBrick(int brick, const ShaderProgram& prog, const Scene& scene);
+    bool brickNeeded(int brick, const Camera& cam, bool skipping) const;
     void drawBricked(const Scene& scene, const Pass& pass, const PassInputs& inputs, const ShaderProgram& prog,
                      const ShaderConstants& constants, BrickCombine combine,
                      const std::function<void(const ShaderProgram&)>& prepare);
@@ -295,6 +302,7 @@ private:
     unsigned long bricksGeneration_ = 0;
     GlTexture brickTexture_;
     std::vector<glm::vec4> brickTexels_;
+    std::size_t bricksDrawn_ = 0;  // bricked passes (bricksDrawn())
     bool countingSamples_ = false;
     bool countingByUniform_ = false;
     // Precomputed textures, per transfer-function slot (the two sides of a

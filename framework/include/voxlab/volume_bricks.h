@@ -32,6 +32,11 @@ namespace voxlab {
 
 inline constexpr int kTextureBrickApron = 3;
 
+// A volume that does not fit the budget is cut into bricks small enough
+// that at least this many fit it at once: a frame then keeps most of the
+// bricks it draws on the GPU for the next one (render/volume_textures.h).
+inline constexpr std::size_t kResidentBricksAimed = 8;
+
 struct VolumeBrick {
     glm::ivec3 lo{0}, hi{0};                   // the voxels it owns, [lo, hi)
     glm::ivec3 textureOrigin{0}, textureSize{0};  // what its texture holds: the apron included, inside the volume
@@ -52,9 +57,11 @@ struct BrickLayout {
 // a GPU whose 3D textures hold at most `maxTextureSize` voxels per axis, in
 // at most `budgetBytes` of texture memory. A volume that fits both is one
 // brick without an apron (the unbricked path). Otherwise the axis with the
-// largest bricks is split again until each brick's texture fits both; all
-// bricks stay resident when their textures fit the budget together, else
-// as many as fit, uploaded again as the passes need them. Throws a one-line
+// largest bricks is split again until each brick's texture fits both and
+// either all bricks fit the budget together (all stay resident) or
+// kResidentBricksAimed of them do (bricks of at least 16 voxels a side
+// permitting); then as many as fit stay resident, and the others are
+// uploaded as the passes need them. Throws a one-line
 // Error when the budget cannot hold a single brick of at least 16 voxels a
 // side with its apron.
 BrickLayout planBricks(const glm::ivec3& dims, int bytesPerVoxel, int maxTextureSize, std::size_t budgetBytes);

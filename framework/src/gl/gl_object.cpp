@@ -20,6 +20,8 @@ void Buffer::make(unsigned* n) { glGenBuffers(1, n); }
 void Buffer::drop(unsigned n) { glDeleteBuffers(1, &n); }
 void VertexArray::make(unsigned* n) { glGenVertexArrays(1, n); }
 void VertexArray::drop(unsigned n) { glDeleteVertexArrays(1, &n); }
+void Query::make(unsigned* n) { glGenQueries(1, n); }
+void Query::drop(unsigned n) { glDeleteQueries(1, &n); }
 
 }  // namespace gl_object
 

@@ -54,7 +54,44 @@ bool orderFree(BrickCombine combine) {
     return combine == BrickCombine::Largest || combine == BrickCombine::Smallest || combine == BrickCombine::Sum;
 }
 
+// Whether some ray of the view can enter the world box [lo, hi]: not when
+// all its corners lie beyond one side of the image (with a pixel to spare)
+// or, in perspective, behind the eye.
+bool inView(const Camera& cam, const glm::dvec3& lo, const glm::dvec3& hi) {
+    const bool perspective = cam.projection == Projection::Perspective;
+    const double halfW = cam.pixelScale * (0.5 * cam.width + 1.0), halfH = cam.pixelScale * (0.5 * cam.height + 1.0);
+    int beyond[5] = {0, 0, 0, 0, 0};  // right, left, below, above, behind
+    for (int c = 0; c < 8; ++c) {
+        const glm::dvec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+        const glm::dvec3 q = p - cam.position;
+        const double u = glm::dot(q, cam.right), v = glm::dot(q, cam.down);
+        const double d = perspective ? glm::dot(q, cam.forward) : 1.0;
+        beyond[0] += u > halfW * d, beyond[1] += u < -halfW * d;
+        beyond[2] += v > halfH * d, beyond[3] += v < -halfH * d;
+        beyond[4] += perspective && d < 0.0;
+    }
+    return std::none_of(std::begin(beyond), std::end(beyond), [](int n) { return n == 8; });
+}
+
 }  // namespace
+
+// A brick's pass changes no pixel when no ray of the view enters its box,
+// or, with empty-space skipping, when every brick of the skipping grid in it
+// is empty for the pass's classification (its rays then leap over all of
+// its samples and pass the state on unchanged).
+bool RenderEngine::brickNeeded(int brick, const Camera& cam, bool skipping) const {
+    const VolumeBrick& b = volumeTextures_->layout().bricks[std::size_t(brick)];
+    const glm::dvec3 spacing = volume_->spacing();
+    if (!inView(cam, glm::dvec3(b.lo) * spacing, glm::dvec3(b.hi) * spacing)) return false;
+    if (!skipping || !bricks_) return true;
+    const BrickGrid& grid = *bricks_;
+    const glm::ivec3 from = b.lo / grid.brickSize, to = (b.hi - 1) / grid.brickSize;
+    for (int z = from.z; z <= to.z; ++z)
+        for (int y = from.y; y <= to.y; ++y)
+            for (int x = from.x; x <= to.x; ++x)
+                if (brickTexels_[grid.index({x, y, z})].b != 0.0f) return true;
+    return false;
+}
 
 // Three quarters of what the driver says is free, for the volume leaves
 // room for the targets and tables. A software renderer's textures are a
@@ -84,6 +121,8 @@ std::size_t driverGpuMemoryBudget() {
 const BrickLayout& RenderEngine::brickLayout() const { return volumeTextures_->layout(); }
 
 std::size_t RenderEngine::brickUploads() const { return volumeTextures_->uploads(); }
+
+std::size_t RenderEngine::brickBytesUploaded() const { return volumeTextures_->bytesUploaded(); }
 
 std::size_t RenderEngine::budgetFor(const Scene& scene) const {
     return scene.gpuMemoryMiB ? std::size_t(*scene.gpuMemoryMiB * double(1 << 20)) : defaultBudget_;
@@ -159,8 +198,13 @@ void RenderEngine::drawBricked(const Scene& scene, const Pass& pass, const PassI
     std::vector<int> order = frontToBackOrder(layout, cam.position / volume_->spacing(),
                                               cam.forward / volume_->spacing(),
                                               cam.projection == Projection::Orthographic);
+    const bool skipping = constants.at("u_skipping") != 0;
+    order.erase(std::remove_if(order.begin(), order.end(), [&](int b) { return !brickNeeded(b, cam, skipping); }),
+                order.end());
     if (orderFree(combine))
         std::stable_partition(order.begin(), order.end(), [&](int b) { return volumeTextures_->resident(b); });
+    volumeTextures_->beginFrame(order);
+    bricksDrawn_ += order.size();
 
     // Counting samples: the state still has to be what a render leaves (the
     // walks skip and stop by it), so each brick is drawn twice: by the

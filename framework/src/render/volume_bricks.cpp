@@ -56,6 +56,13 @@ bool fits(const BrickLayout& layout, int maxTextureSize, std::size_t budgetBytes
     return largestBrick(layout) <= budgetBytes;
 }
 
+// Fits, and either every brick stays on the GPU or at least
+// kResidentBricksAimed of them do at once.
+bool fitsWithRoom(const BrickLayout& layout, int maxTextureSize, std::size_t budgetBytes) {
+    if (!fits(layout, maxTextureSize, budgetBytes)) return false;
+    return layout.totalBytes() <= budgetBytes || largestBrick(layout) * kResidentBricksAimed <= budgetBytes;
+}
+
 std::string mib(std::size_t bytes) { return std::to_string((bytes + (1u << 19)) >> 20) + " MiB"; }
 
 }  // namespace
@@ -77,19 +84,20 @@ BrickLayout planBricks(const glm::ivec3& dims, int bytesPerVoxel, int maxTexture
     glm::ivec3 count(1);
     for (;;) {
         BrickLayout layout = layoutFor(dims, count, bytesPerVoxel, kTextureBrickApron);
-        if (fits(layout, maxTextureSize, budgetBytes)) {
+        // Split the axis whose bricks are longest (ties: the later axis,
+        // the slowest in memory, so that uploads read longer rows).
+        int axis = 0;
+        for (int a = 1; a < 3; ++a)
+            if (layout.core[a] >= layout.core[axis]) axis = a;
+        const bool smallest = layout.core[axis] <= kSmallestCore;
+        if (fitsWithRoom(layout, maxTextureSize, budgetBytes) || (smallest && fits(layout, maxTextureSize, budgetBytes))) {
             layout.budgetBytes = budgetBytes;
             layout.resident = layout.totalBytes() <= budgetBytes
                                   ? layout.bricks.size()
                                   : std::max<std::size_t>(1, budgetBytes / largestBrick(layout));
             return layout;
         }
-        // Split the axis whose bricks are longest (ties: the later axis,
-        // the slowest in memory, so that uploads read longer rows).
-        int axis = 0;
-        for (int a = 1; a < 3; ++a)
-            if (layout.core[a] >= layout.core[axis]) axis = a;
-        if (layout.core[axis] <= kSmallestCore)
+        if (smallest)
             throw Error("bricks: a GPU memory budget of " + mib(budgetBytes) + " cannot hold one brick of " +
                         std::to_string(kSmallestCore) + "^3 voxels with its apron (" +
                         mib(textureBytes(glm::ivec3(kSmallestCore + 2 * kTextureBrickApron), bytesPerVoxel)) +

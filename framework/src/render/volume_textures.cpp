@@ -15,6 +15,7 @@ void VolumeTextures::release() {
     holder_.clear();
     lastUse_.clear();
     slotOf_.clear();
+    ahead_.clear();
 }
 
 void VolumeTextures::set(const Volume& volume, unsigned long generation, std::size_t budgetBytes, int maxTextureSize) {
@@ -24,20 +25,45 @@ void VolumeTextures::set(const Volume& volume, unsigned long generation, std::si
     scaleOffset_ = volumeTextureScaleOffset(volume.type());
     volume_ = &volume;
     generation_ = generation;
-    uploads_ = bytes_ = 0;
     pool_.resize(std::min(layout_.resident, layout_.bricks.size()));
     for (GlTexture& t : pool_) t = GlTexture::make();
     holder_.assign(pool_.size(), -1);
     lastUse_.assign(pool_.size(), -1);
     slotOf_.assign(layout_.bricks.size(), -1);
+    ahead_.assign(layout_.bricks.size(), -1);
     if (pool_.size() == layout_.bricks.size())  // all resident: upload once, now
         for (int b = 0; b < int(layout_.bricks.size()); ++b) texture(b);
+}
+
+void VolumeTextures::beginFrame(const std::vector<int>& order) {
+    std::fill(ahead_.begin(), ahead_.end(), -1);
+    for (std::size_t i = 0; i < order.size(); ++i) ahead_[std::size_t(order[i])] = int(i);
+    frameStart_ = clock_ + 1;
+}
+
+// The slot a missing brick takes (the rule is in volume_textures.h).
+int VolumeTextures::slotToFill() const {
+    int stale = -1, drawn = -1, furthest = -1;
+    for (int s = 0; s < int(pool_.size()); ++s) {
+        const int brick = holder_[std::size_t(s)];
+        if (brick < 0) return s;
+        const long used = lastUse_[std::size_t(s)];
+        const int ahead = ahead_[std::size_t(brick)];
+        if (ahead >= 0) {
+            if (furthest < 0 || ahead > ahead_[std::size_t(holder_[std::size_t(furthest)])]) furthest = s;
+        } else if (used < frameStart_) {
+            if (stale < 0 || used < lastUse_[std::size_t(stale)]) stale = s;
+        } else if (drawn < 0 || used > lastUse_[std::size_t(drawn)]) {
+            drawn = s;
+        }
+    }
+    return stale >= 0 ? stale : drawn >= 0 ? drawn : furthest;
 }
 
 unsigned VolumeTextures::texture(int brick) {
     int slot = slotOf_[std::size_t(brick)];
     if (slot < 0) {
-        slot = int(std::min_element(lastUse_.begin(), lastUse_.end()) - lastUse_.begin());
+        slot = slotToFill();
         if (holder_[std::size_t(slot)] >= 0) slotOf_[std::size_t(holder_[std::size_t(slot)])] = -1;
         const VolumeBrick& b = layout_.bricks[std::size_t(brick)];
         uploadVolumeBox(pool_[std::size_t(slot)], *volume_, b.textureOrigin, b.textureSize);
@@ -47,6 +73,7 @@ unsigned VolumeTextures::texture(int brick) {
         bytes_ += b.bytes;
     }
     lastUse_[std::size_t(slot)] = ++clock_;
+    ahead_[std::size_t(brick)] = -1;
     return pool_[std::size_t(slot)];
 }
 

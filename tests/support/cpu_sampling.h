@@ -12,6 +12,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdlib>
 
 #include <glm/glm.hpp>
 
@@ -56,6 +57,25 @@ inline double cpuLineDerivative(const Volume& v, glm::dvec3 p, int axis) {
 inline glm::dvec3 cpuCentralGradient(const Volume& v, glm::dvec3 p) {
     return glm::dvec3(cpuLineDerivative(v, p, 0), cpuLineDerivative(v, p, 1), cpuLineDerivative(v, p, 2)) *
            v.minSpacing();
+}
+
+// The 26-neighbour estimator: along each axis a, the central differences
+// at the 3x3 positions p + da spacing_b e_b + db spacing_c e_c around it
+// (b, c the other two axes), weighed (2 - |da|)(2 - |db|) / 16, in data
+// units per smallest spacing.
+inline glm::dvec3 cpuSobelGradient(const Volume& v, glm::dvec3 p) {
+    glm::dvec3 g(0.0);
+    for (int a = 0; a < 3; ++a) {
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        for (int da = -1; da <= 1; ++da)
+            for (int db = -1; db <= 1; ++db) {
+                glm::dvec3 q = p;
+                q[b] += da * v.spacing()[b];
+                q[c] += db * v.spacing()[c];
+                g[a] += (2 - std::abs(da)) * (2 - std::abs(db)) / 16.0 * cpuLineDerivative(v, q, a);
+            }
+    }
+    return g * v.minSpacing();
 }
 
 }  // namespace voxlab::testing

@@ -27,10 +27,12 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "voxlab/gradients.h"
 #include "voxlab/transfer_function.h"
 #include "voxlab/transfer_function_2d.h"
 
@@ -61,13 +63,31 @@ struct BrickGrid {
     // every difference quotient the estimators take (central, 26-neighbour,
     // precomputed, one-sided at the faces) is at most L_a per voxel, and at
     // most L_a per smallest spacing.
+    //
+    // Knowing the estimator gives a far tighter bound (boundsFor set): the
+    // central difference the gradient stage takes at voxel coordinate u,
+    // (f(u + e_a) - f(u - e_a)) / 2 of the trilinear field f, is the
+    // trilinear interpolation, with u's own weights, of the voxels' central
+    // differences D_a(i) = (V(i + e_a) - V(i - e_a)) / 2, so it is at most
+    // the largest |D_a| of the voxels u reads. (Within a voxel and a half
+    // of the volume's faces the stage clamps its two positions to the
+    // outer voxels' centres and its quotient is a blend of the one-voxel
+    // differences there: those voxels take the largest of them too.) The
+    // 26-neighbour estimator is a weighted mean of such differences at
+    // positions one voxel aside, so it reads one voxel further. With
+    // bounds for an estimator, wideRange is the brick's range (its value
+    // samples read no further) and the bound is over the voxels the
+    // estimator reads; a GPU's fixed-point filtering weights add at most
+    // 1/512 of the values' spread, and 1/256 is added for it.
     std::vector<glm::vec2> wideRange;
     std::vector<float> gradientBound;
+    std::optional<GradientEstimator> boundsFor;  // the estimator the bounds hold for; none: any
 
     // Builds the grid of a volume: one pass over its voxels per brick row.
     static BrickGrid build(const Volume& volume, int brickSize = kBrickSize);
-    // Fills wideRange and gradientBound (about three reads per voxel).
-    void computeGradientBounds(const Volume& volume);
+    // Fills wideRange and gradientBound, for one estimator or (none) for
+    // any (about three reads per voxel; the tight bounds about fifteen).
+    void computeGradientBounds(const Volume& volume, std::optional<GradientEstimator> estimator = std::nullopt);
 
     std::size_t brickCount() const { return range.size(); }
     std::size_t index(glm::ivec3 brick) const {
@@ -87,9 +107,22 @@ struct EmptySpaceRule {
         TransferFunction2D,  // the same for the 2D transfer function
         AtLeast,             // visible where a value >= threshold can occur (isosurface, first hit)
     };
+    EmptySpaceRule(Kind k = Kind::None, double t = 0.0) : kind(k), threshold(t) {}
     Kind kind = Kind::None;
     double threshold = 0.0;  // AtLeast: data units
+    // TransferFunction2D: the on-the-fly gradient estimator its samples
+    // use, for the tight bounds; none (precomputed gradients): the bound
+    // that holds for any.
+    std::optional<GradientEstimator> gradients;
 };
+
+// The bricks of the grid a rule skips with: kBrickSize voxels a side, but
+// for the 2D transfer function as small as 2 while the grid keeps at most
+// kFineGridBricks bricks. Its triangles and boxes over (value, gradient)
+// show a thin shell around each boundary rather than the bulk of a
+// material, which coarse bricks fit badly (docs/performance.md).
+inline constexpr std::size_t kFineGridBricks = std::size_t(1) << 21;
+int skippingBrickSize(const EmptySpaceRule& rule, glm::ivec3 dims);
 
 // One byte per brick, 1 where the brick may contribute.
 //
@@ -104,7 +137,7 @@ std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const TransferFun
 // widget needs its value and gradient intervals to meet the range and
 // [0, gradient bound]; Levoy's triangle (value v0, radius r) is non-zero
 // where |v - v0| <= r |g|, so it needs v0 within r times the gradient bound
-// of the range.
+// of the range. The bounds must hold for the estimator the samples use.
 std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const std::vector<Tf2dWidget>& widgets);
 
 // AtLeast: visible where the brick's largest value reaches the threshold.

@@ -298,10 +298,18 @@ private:
     unsigned long sliceStackGeneration_[3] = {0, 0, 0};
     // Empty-space skipping: the grid, the volume it belongs to, and its
     // texture (min, max, visible, 0 per brick) as last uploaded.
-    std::unique_ptr<BrickGrid> bricks_;
-    unsigned long bricksGeneration_ = 0;
-    GlTexture brickTexture_;
-    std::vector<glm::vec4> brickTexels_;
+    // Empty-space skipping's grids (bindBricks): one of kBrickSize voxels a
+    // side, and the 2D transfer function's finer one (skippingBrickSize),
+    // each built on first use per volume, with its flags and their texture;
+    // `skipping_` is the one the last pass bound.
+    struct SkipGrid {
+        std::unique_ptr<BrickGrid> grid;
+        unsigned long generation = 0;
+        GlTexture texture;
+        std::vector<glm::vec4> texels;  // (smallest, largest, visible, 0) per brick
+    };
+    SkipGrid skipGrids_[2];
+    const SkipGrid* skipping_ = nullptr;
     std::size_t bricksDrawn_ = 0;  // bricked passes (bricksDrawn())
     bool countingSamples_ = false;
     bool countingByUniform_ = false;

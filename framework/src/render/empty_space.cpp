@@ -115,14 +115,95 @@ void fillGradientBounds(const Volume& volume, BrickGrid* grid) {
             }
 }
 
+// The largest |difference quotient| the central-difference stage can take
+// where it reads voxel i along one axis of n voxels (see empty_space.h):
+// |D(i)|, and near the faces also the one-voxel differences there. `at(k)`
+// reads voxel k along the axis (clamped).
+template <class At>
+double centralReach(const At& at, int i, int n) {
+    double d = std::abs(at(i + 1) - at(i - 1)) * 0.5;
+    if (i <= 1) d = std::max({d, std::abs(at(1) - at(0)), std::abs(at(2) - at(1))});
+    if (i >= n - 2) d = std::max({d, std::abs(at(n - 1) - at(n - 2)), std::abs(at(n - 2) - at(n - 3))});
+    return d;
+}
+
+// Per voxel column of one layer of bricks: the largest reach along each
+// axis and the value range, over the layer's slices.
+struct Column {
+    glm::dvec3 reach{0.0};
+    double lo = INFINITY, hi = -INFINITY;
+};
+
+// The tight bounds (empty_space.h) one layer of bricks at a time: each
+// voxel of the layer's slices (with the apron) folded into its column, then
+// each brick's columns folded together.
+template <class T>
+void fillTightGradientBounds(const Volume& volume, BrickGrid* grid, int apron) {
+    const std::uint8_t* bytes = volume.bytes().data();
+    const glm::ivec3 dims = volume.dims();
+    const glm::dvec3 scale = volume.minSpacing() / volume.spacing();  // quotients per smallest spacing
+    const auto at = [&](int x, int y, int z) {
+        x = std::clamp(x, 0, dims.x - 1), y = std::clamp(y, 0, dims.y - 1), z = std::clamp(z, 0, dims.z - 1);
+        return double(voxelValue<T>(
+            bytes, (std::size_t(z) * std::size_t(dims.y) + std::size_t(y)) * std::size_t(dims.x) + std::size_t(x)));
+    };
+    const int b = grid->brickSize;
+    const auto first = [&](int brick) { return std::max(brick * b - apron, 0); };
+    const auto last = [&](int brick, int n) { return std::min((brick + 1) * b + apron, n); };  // exclusive
+    std::vector<Column> columns(std::size_t(dims.x) * std::size_t(dims.y));
+    for (int bz = 0; bz < grid->count.z; ++bz) {
+        std::fill(columns.begin(), columns.end(), Column{});
+        for (int z = first(bz); z < last(bz, dims.z); ++z)
+            for (int y = 0; y < dims.y; ++y)
+                for (int x = 0; x < dims.x; ++x) {
+                    Column& c = columns[std::size_t(y) * std::size_t(dims.x) + std::size_t(x)];
+                    const double v = at(x, y, z);
+                    c.lo = std::min(c.lo, v), c.hi = std::max(c.hi, v);
+                    c.reach.x = std::max(c.reach.x, centralReach([&](int k) { return at(k, y, z); }, x, dims.x));
+                    c.reach.y = std::max(c.reach.y, centralReach([&](int k) { return at(x, k, z); }, y, dims.y));
+                    c.reach.z = std::max(c.reach.z, centralReach([&](int k) { return at(x, y, k); }, z, dims.z));
+                }
+        for (int by = 0; by < grid->count.y; ++by)
+            for (int bx = 0; bx < grid->count.x; ++bx) {
+                Column all;
+                for (int y = first(by); y < last(by, dims.y); ++y)
+                    for (int x = first(bx); x < last(bx, dims.x); ++x) {
+                        const Column& c = columns[std::size_t(y) * std::size_t(dims.x) + std::size_t(x)];
+                        all.reach = glm::max(all.reach, c.reach);
+                        all.lo = std::min(all.lo, c.lo), all.hi = std::max(all.hi, c.hi);
+                    }
+                const glm::dvec3 reach = (all.reach + (all.hi - all.lo) / 256.0) * scale;
+                const std::size_t i = grid->index({bx, by, bz});
+                grid->wideRange[i] = grid->range[i];
+                // Rounded up a little: the shader's float arithmetic.
+                grid->gradientBound[i] =
+                    float(glm::length(reach) * (1.0 + 1e-5) + 1e-6 * (std::abs(all.lo) + std::abs(all.hi)));
+            }
+        volume.releaseSlices(first(bz), bz + 1 < grid->count.z ? first(bz + 1) : dims.z);
+    }
+}
+
 }  // namespace
 
-void BrickGrid::computeGradientBounds(const Volume& volume) {
+void BrickGrid::computeGradientBounds(const Volume& volume, std::optional<GradientEstimator> estimator) {
     wideRange.assign(brickCount(), glm::vec2(0.0f));
     gradientBound.assign(brickCount(), 0.0f);
+    boundsFor = estimator;
     withVoxelType(volume.type(), [&](auto voxel) {
-        fillGradientBounds<decltype(voxel)>(volume, this);
+        using T = decltype(voxel);
+        if (!estimator) fillGradientBounds<T>(volume, this);
+        // The 26-neighbour estimator's differences lie one voxel aside.
+        else fillTightGradientBounds<T>(volume, this, *estimator == GradientEstimator::Sobel ? 2 : 1);
     });
+}
+
+int skippingBrickSize(const EmptySpaceRule& rule, glm::ivec3 dims) {
+    if (rule.kind != EmptySpaceRule::Kind::TransferFunction2D) return kBrickSize;
+    for (int size = 2; size < kBrickSize; size *= 2) {
+        const glm::ivec3 n = (dims + size - 1) / size;
+        if (std::size_t(n.x) * std::size_t(n.y) * std::size_t(n.z) <= kFineGridBricks) return size;
+    }
+    return kBrickSize;
 }
 
 BrickGrid BrickGrid::build(const Volume& volume, int brickSize) {

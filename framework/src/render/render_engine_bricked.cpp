@@ -83,13 +83,13 @@ bool RenderEngine::brickNeeded(int brick, const Camera& cam, bool skipping) cons
     const VolumeBrick& b = volumeTextures_->layout().bricks[std::size_t(brick)];
     const glm::dvec3 spacing = volume_->spacing();
     if (!inView(cam, glm::dvec3(b.lo) * spacing, glm::dvec3(b.hi) * spacing)) return false;
-    if (!skipping || !bricks_) return true;
-    const BrickGrid& grid = *bricks_;
+    if (!skipping || !skipping_) return true;
+    const BrickGrid& grid = *skipping_->grid;
     const glm::ivec3 from = b.lo / grid.brickSize, to = (b.hi - 1) / grid.brickSize;
     for (int z = from.z; z <= to.z; ++z)
         for (int y = from.y; y <= to.y; ++y)
             for (int x = from.x; x <= to.x; ++x)
-                if (brickTexels_[grid.index({x, y, z})].b != 0.0f) return true;
+                if (skipping_->texels[grid.index({x, y, z})].b != 0.0f) return true;
     return false;
 }
 

@@ -16,8 +16,16 @@ std::vector<ParameterSpec> Tf2dRenderer::parameters() const {
     return p;
 }
 
-EmptySpaceRule Tf2dRenderer::emptySpaceRule(const ParameterValues&) const {
-    return {EmptySpaceRule::Kind::TransferFunction2D};
+// The samples' gradient estimator, for the bricks' tight gradient bounds;
+// precomputed gradients: none (the bound that holds for any).
+EmptySpaceRule Tf2dRenderer::emptySpaceRule(const ParameterValues& values) const {
+    EmptySpaceRule rule{EmptySpaceRule::Kind::TransferFunction2D};
+    if (!precomputedGradients(values)) {
+        const auto sobel = values.find("sobel");
+        rule.gradients = sobel != values.end() && sobel->second != 0.0 ? GradientEstimator::Sobel
+                                                                         : GradientEstimator::Central;
+    }
+    return rule;
 }
 
 }  // namespace voxlab

@@ -5,7 +5,9 @@
 #
 # Prints the OpenGL renderer string, then, on bonsai (orbit view azimuth 35,
 # elevation 25, perspective, step 0.5, the dataset's transfer function), the
-# median ms/frame of `voxlab bench --gl egl` for the slow paths of
+# median ms/frame of `voxlab bench --gl egl` (by the wall clock and by the
+# GL's timestamps, which on a GPU are the GPU's own time) and the samples a
+# second by the README's sampling rule, for the slow paths of
 # docs/performance.md (composite, shaded composite, isosurface, MIP with the
 # shader's trilinear and with the GPU's, the 2D transfer function) at
 # 512x512 and 2048x2048, and one composite run on each bundled dataset at
@@ -27,9 +29,16 @@ bench() {  # label, then bench arguments: prints one table row
     echo "gpu_bench.sh: $label: voxlab bench failed" >&2; exit 1; }
   python3 -c '
 import json, sys
-ms = json.loads(sys.argv[2])["median_ms"]
-print("| %s | %.2f | %.0f |" % (sys.argv[1], ms, 1000.0 / ms))' \
+j = json.loads(sys.argv[2])
+ms, gpu = j["median_ms"], j.get("gpu_median_ms")
+rate = j.get("samples_per_second")
+print("| %s | %.2f | %s | %.0f | %s |" % (sys.argv[1], ms, "%.2f" % gpu if gpu is not None else "n/a",
+      1000.0 / ms, "%.3g" % rate if rate else "n/a"))' \
     "$label" "$out"
+}
+header() {
+  echo "| $1 | ms/frame, wall (median) | ms/frame, GL timestamps (median) | frames/s | samples/s by the sampling rule |"
+  echo "|---|---|---|---|---|"
 }
 
 "$voxlab" bench --dataset bonsai.nrrd --renderer mip --size 64x64 --frames 1 --gl "$gl" | grep '^gl:'
@@ -38,8 +47,7 @@ for size in 512 2048; do
   echo
   echo "bonsai, ${size}x${size}, $frames frames"
   echo
-  echo "| set-up | ms/frame (median) | frames/s |"
-  echo "|---|---|---|"
+  header "set-up"
   bench "composite" "${s[@]}" --renderer composite --tf tf/bonsai.json
   bench "composite, shaded" "${s[@]}" --renderer composite --tf tf/bonsai.json --param shading=1
   bench "iso (value 60)" "${s[@]}" --renderer iso --param isovalue=60
@@ -50,8 +58,7 @@ done
 echo
 echo "composite, every bundled dataset with a preset, 1024x1024, $frames frames"
 echo
-echo "| dataset | ms/frame (median) | frames/s |"
-echo "|---|---|---|"
+header "dataset"
 for d in bonsai bucky cthead fuel headsq neghip stent tooth; do
   bench "$d" --dataset "$d.nrrd" --size 1024x1024 --renderer composite --tf "tf/$d.json"
 done

@@ -106,6 +106,14 @@ TEST(BrickPlan, AVolumeLargerThanTheBudgetKeepsEightBricksOnTheGpu) {
     const BrickLayout tight = planBricks({256, 256, 256}, 4, 2048, 2 * 22 * 22 * 22 * 4);
     EXPECT_GE(tight.resident, 1u);
     EXPECT_LT(tight.resident, kResidentBricksAimed);
+    // Aiming for one: bricks as large as fit, the fewest passes (a software
+    // renderer and a volume over twice the budget).
+    EXPECT_EQ(residentBricksAimed(16 * kMiB, 4 * kMiB, true), 1u);
+    EXPECT_EQ(residentBricksAimed(16 * kMiB, 8 * kMiB, true), kResidentBricksAimed);
+    EXPECT_EQ(residentBricksAimed(16 * kMiB, 4 * kMiB, false), kResidentBricksAimed);
+    const BrickLayout few = planBricks({256, 256, 256}, 1, 2048, 4 * kMiB, 1);
+    EXPECT_EQ(few.bricks.size(), 8u);
+    EXPECT_EQ(few.resident, 1u);
 }
 
 TEST(BrickPlan, ABudgetThatHoldsNoBrickIsAOneLineError) {

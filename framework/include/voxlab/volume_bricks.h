@@ -37,6 +37,15 @@ inline constexpr int kTextureBrickApron = 3;
 // bricks it draws on the GPU for the next one (render/volume_textures.h).
 inline constexpr std::size_t kResidentBricksAimed = 8;
 
+// How many bricks a plan should keep on the GPU at once: kResidentBricksAimed,
+// except where passes are expensive (a software renderer: a full-screen
+// pass at 512^2 costs about 30 ms on llvmpipe with 2 threads) and the volume
+// is over twice the budget, so that most bricks are uploaded every frame
+// anyway: then 1 (bricks as large as fit, the fewest passes). Measured on
+// 1024^3 bonsai, 256 MiB, composite 512^2: 8 bricks a frame took 803 ms,
+// 36 (8 resident, 28 uploaded) 1660 ms.
+std::size_t residentBricksAimed(std::size_t volumeBytes, std::size_t budgetBytes, bool passesExpensive);
+
 struct VolumeBrick {
     glm::ivec3 lo{0}, hi{0};                   // the voxels it owns, [lo, hi)
     glm::ivec3 textureOrigin{0}, textureSize{0};  // what its texture holds: the apron included, inside the volume
@@ -59,12 +68,13 @@ struct BrickLayout {
 // brick without an apron (the unbricked path). Otherwise the axis with the
 // largest bricks is split again until each brick's texture fits both and
 // either all bricks fit the budget together (all stay resident) or
-// kResidentBricksAimed of them do (bricks of at least 16 voxels a side
+// `aimedResident` of them do (bricks of at least 16 voxels a side
 // permitting); then as many as fit stay resident, and the others are
 // uploaded as the passes need them. Throws a one-line
 // Error when the budget cannot hold a single brick of at least 16 voxels a
 // side with its apron.
-BrickLayout planBricks(const glm::ivec3& dims, int bytesPerVoxel, int maxTextureSize, std::size_t budgetBytes);
+BrickLayout planBricks(const glm::ivec3& dims, int bytesPerVoxel, int maxTextureSize, std::size_t budgetBytes,
+                       std::size_t aimedResident = kResidentBricksAimed);
 
 // The order in which to draw the bricks so that every ray meets them front
 // to back: along any ray the brick index changes monotonically on each axis,

@@ -16,4 +16,8 @@ constexpr int kBsplineUnit = 9;  // after the precomputed textures (6, 7)
 // RenderEngine::defaultGpuMemoryBudget); needs a current context.
 std::size_t driverGpuMemoryBudget();
 
+// Whether the current context draws on the CPU (Mesa's llvmpipe or
+// softpipe), where every full-screen pass costs tens of milliseconds.
+bool softwareRenderer();
+
 }  // namespace voxlab

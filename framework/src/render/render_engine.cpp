@@ -70,7 +70,7 @@ RenderEngine::RenderEngine(std::string implementationRoot)
     for (const auto& renderer : rendererRegistry().all())
         for (const auto& [name, text] : renderer->generatedShaders()) library_.addGenerated(name, text);
     vao_ = GlVertexArray::make();  // core profile: drawing needs a bound VAO
-    volumeTextures_ = std::make_unique<VolumeTextures>();
+    volumeTextures_ = std::make_unique<VolumeTextures>(softwareRenderer());
     glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxTextureSize_);
     defaultBudget_ = driverGpuMemoryBudget();
     gradientTexture_ = GlTexture::make();

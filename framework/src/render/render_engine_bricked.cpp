@@ -93,6 +93,11 @@ bool RenderEngine::brickNeeded(int brick, const Camera& cam, bool skipping) cons
     return false;
 }
 
+bool softwareRenderer() {
+    const std::string name = currentGlRenderer();
+    return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
+}
+
 // Three quarters of what the driver says is free, for the volume leaves
 // room for the targets and tables. A software renderer's textures are a
 // second copy of the volume in the machine's own memory: at most 256 MiB
@@ -109,9 +114,8 @@ std::size_t driverGpuMemoryBudget() {
         glGetIntegerv(kAtiTextureFreeMemory, kib);
         if (kib[0] > 0) return std::size_t(kib[0]) * 1024 / 4 * 3;
     }
-    const std::string name = currentGlRenderer();
     const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-    if (name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos) {
+    if (softwareRenderer()) {
         const std::size_t software = std::size_t(256) << 20;
         return pages > 0 && page > 0 ? std::min(software, std::size_t(pages) * std::size_t(page) / 4) : software;
     }

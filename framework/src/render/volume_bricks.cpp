@@ -56,11 +56,11 @@ bool fits(const BrickLayout& layout, int maxTextureSize, std::size_t budgetBytes
     return largestBrick(layout) <= budgetBytes;
 }
 
-// Fits, and either every brick stays on the GPU or at least
-// kResidentBricksAimed of them do at once.
-bool fitsWithRoom(const BrickLayout& layout, int maxTextureSize, std::size_t budgetBytes) {
+// Fits, and either every brick stays on the GPU or at least `aimed` of
+// them do at once.
+bool fitsWithRoom(const BrickLayout& layout, int maxTextureSize, std::size_t budgetBytes, std::size_t aimed) {
     if (!fits(layout, maxTextureSize, budgetBytes)) return false;
-    return layout.totalBytes() <= budgetBytes || largestBrick(layout) * kResidentBricksAimed <= budgetBytes;
+    return layout.totalBytes() <= budgetBytes || largestBrick(layout) * aimed <= budgetBytes;
 }
 
 std::string mib(std::size_t bytes) { return std::to_string((bytes + (1u << 19)) >> 20) + " MiB"; }
@@ -73,7 +73,12 @@ std::size_t BrickLayout::totalBytes() const {
     return total;
 }
 
-BrickLayout planBricks(const glm::ivec3& dims, int bytesPerVoxel, int maxTextureSize, std::size_t budgetBytes) {
+std::size_t residentBricksAimed(std::size_t volumeBytes, std::size_t budgetBytes, bool passesExpensive) {
+    return passesExpensive && volumeBytes > 2 * budgetBytes ? 1 : kResidentBricksAimed;
+}
+
+BrickLayout planBricks(const glm::ivec3& dims, int bytesPerVoxel, int maxTextureSize, std::size_t budgetBytes,
+                       std::size_t aimedResident) {
     if (glm::any(glm::lessThan(dims, glm::ivec3(1)))) throw Error("bricks: the volume has no voxels");
     BrickLayout whole = layoutFor(dims, glm::ivec3(1), bytesPerVoxel, 0);
     whole.budgetBytes = budgetBytes;
@@ -90,7 +95,7 @@ BrickLayout planBricks(const glm::ivec3& dims, int bytesPerVoxel, int maxTexture
         for (int a = 1; a < 3; ++a)
             if (layout.core[a] >= layout.core[axis]) axis = a;
         const bool smallest = layout.core[axis] <= kSmallestCore;
-        if (fitsWithRoom(layout, maxTextureSize, budgetBytes) || (smallest && fits(layout, maxTextureSize, budgetBytes))) {
+        if (fitsWithRoom(layout, maxTextureSize, budgetBytes, aimedResident) || (smallest && fits(layout, maxTextureSize, budgetBytes))) {
             layout.budgetBytes = budgetBytes;
             layout.resident = layout.totalBytes() <= budgetBytes
                                   ? layout.bricks.size()

@@ -21,7 +21,8 @@ void VolumeTextures::release() {
 void VolumeTextures::set(const Volume& volume, unsigned long generation, std::size_t budgetBytes, int maxTextureSize) {
     if (volume_ == &volume && generation_ == generation && layout_.budgetBytes == budgetBytes && !pool_.empty()) return;
     release();
-    layout_ = planBricks(volume.dims(), int(voxelTypeSize(volume.type())), maxTextureSize, budgetBytes);
+    layout_ = planBricks(volume.dims(), int(voxelTypeSize(volume.type())), maxTextureSize, budgetBytes,
+                         residentBricksAimed(volume.bytes().size(), budgetBytes, passesExpensive_));
     scaleOffset_ = volumeTextureScaleOffset(volume.type());
     volume_ = &volume;
     generation_ = generation;

@@ -31,7 +31,9 @@ namespace voxlab {
 
 class VolumeTextures {
 public:
-    VolumeTextures() = default;
+    // `passesExpensive`: a software renderer, where each brick's pass costs
+    // tens of milliseconds (residentBricksAimed()).
+    explicit VolumeTextures(bool passesExpensive) : passesExpensive_(passesExpensive) {}
     ~VolumeTextures();
     VolumeTextures(const VolumeTextures&) = delete;
     VolumeTextures& operator=(const VolumeTextures&) = delete;
@@ -53,6 +55,7 @@ public:
     std::size_t bytesUploaded() const { return bytes_; }
 
 private:
+    bool passesExpensive_ = false;
     const Volume* volume_ = nullptr;
     unsigned long generation_ = 0;
     BrickLayout layout_;

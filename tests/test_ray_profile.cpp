@@ -1,31 +1,40 @@
-// The ray-profile inspector (computeRayProfile) against the GPU renderers:
-// an independent implementation of the same conventions. For a grid of
-// pixels of small oblique renders of real datasets, the profile's result laid
-// over the background must be the pixel the renderer drew.
-//
-// Tolerance kPixelTolerance (1.5/255 per channel; llvmpipe agrees within
-// 0.02/255 on every scene here): the GPU classifies through a float table
-// that bake() sizes so that its linear interpolation stays within 0.5/255 of
-// the exact piecewise-linear function the profile evaluates, and it computes
-// ray set-up, sample positions and interpolation weights in float where the
-// profile uses double; a float rounding can also move the early-termination
-// test to the next sample or the sample count floor(L/step + 1/2) by one.
-// A profile whose samples sit half a step off (t_entry + m step) misses by
-// 2.8/255 on the first composite scene and far more on the others.
-// Each comparison also prints the largest difference it measured.
+// The ray profile (RenderEngine::profileRay), taken from the renderers' own
+// shaders in an instrumented run, held to oracles that do not come from
+// those shaders:
+//  - the renderer's image: a profile's last pixel, laid over the
+//    background, is the pixel the renderer drew (for every ray-casting
+//    renderer, on a grid of pixels of small oblique renders, with jitter,
+//    early termination, a slab, a cutting plane);
+//  - the data: along +z through one voxel column, orthographic, nearest,
+//    sample k is voxel k and the running maximum is the maximum so far;
+//  - the transfer function on the CPU (support/cpu_tf.h): the opacity the
+//    compositing stage applied to each sample is the function's at the
+//    sample's value, corrected for the step;
+//  - a planted bug: a copy of the reference whose mip.glsl takes every
+//    other sample shows, in the profile, the maximum of the even samples,
+//    where the reference shows the maximum of all;
+//  - the starter code: a stage whose stub is reached says so.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <map>
 
+#include "support/cpu_tf.h"
 #include "support/gl_fixture.h"
+#include "support/temp_dir.h"
 #include "voxlab/error.h"
+#include "voxlab/project_root.h"
 #include "voxlab/ray_profile.h"
 
 namespace voxlab::testing {
 namespace {
 
+// Per channel: the profile reads the same shader's pixels back, so the
+// difference is float rounding (the cut ray's last sample count and the
+// whole ray's agree) and, for back-to-front compositing, the order of the
+// sums; 1.5 of 255 covers llvmpipe's and a GPU's.
 constexpr double kPixelTolerance = 1.5 / 255.0;
 
 const Volume& dataset(const std::string& name) {
@@ -37,353 +46,253 @@ const Volume& dataset(const std::string& name) {
 
 TransferFunction preset(const std::string& name) { return TransferFunction::load(datasetPath("tf/" + name)); }
 
-Scene orbitScene(const std::string& renderer, int size, double azimuth, double elevation,
-                 Projection projection = Projection::Perspective) {
+Scene orbitScene(const std::string& renderer, int size, double azimuth, double elevation) {
     Scene s;
     s.renderer = renderer;
     s.width = s.height = size;
-    s.camera.view = "";
     s.camera.azimuth = azimuth;
     s.camera.elevation = elevation;
-    s.camera.projection = projection;
     s.step = 0.5;
     s.interpolation = Interpolation::Trilinear;
+    s.background = glm::vec3(0.1f, 0.2f, 0.3f);
     return s;
-}
-
-struct Comparison {
-    double maxError = 0.0;
-    int worstX = -1, worstY = -1;
-    int pixels = 0, hits = 0, stopped = 0;
-    std::vector<double> errors;  // per compared pixel, the largest over its channels
-    // The share of pixels whose error exceeds `bound`.
-    double shareOver(double bound) const {
-        return double(std::count_if(errors.begin(), errors.end(), [&](double e) { return e > bound; })) /
-               double(std::max<std::size_t>(errors.size(), 1));
-    }
-};
-
-// Renders `scene` on the GPU and compares every `stride`-th pixel with the
-// profile of its ray.
-Comparison compareWithRenderer(const Volume& volume, const Scene& scene, int stride = 3,
-                               const Scene* profileScene = nullptr) {
-    GlTest::engine().setVolume(volume);
-    const Image image = GlTest::engine().render(scene);
-    Comparison c;
-    for (int y = 1; y < scene.height; y += stride)
-        for (int x = 1; x < scene.width; x += stride) {
-            const RayProfile p = computeRayProfile(volume, profileScene ? *profileScene : scene, x, y);
-            const glm::vec3 cpu = profilePixel(p, scene.background);
-            const glm::vec4 gpu = image.at(x, y);
-            double pixelError = 0.0;
-            for (int k = 0; k < 3; ++k) {
-                const double e = std::abs(double(cpu[k]) - double(gpu[k]));
-                pixelError = std::max(pixelError, e);
-                if (e > c.maxError) c.maxError = e, c.worstX = x, c.worstY = y;
-            }
-            c.errors.push_back(pixelError);
-            ++c.pixels;
-            c.hits += p.hitsVolume;
-            c.stopped += p.stoppedAt >= 0;
-        }
-    std::printf("  %s: %d pixels (%d hit, %d stopped early), largest difference %.2f/255 at (%d, %d)\n",
-                scene.renderer.c_str(), c.pixels, c.hits, c.stopped, c.maxError * 255.0, c.worstX, c.worstY);
-    return c;
 }
 
 class RayProfileTest : public GlTest {};
 
 // ---------------------------------------------------------------------------
-// The profile's result is the renderer's pixel.
+// The profile's last pixel is the renderer's.
 
-TEST_F(RayProfileTest, CompositeBonsaiWithEarlyTerminationMatchesTheRenderer) {
-    Scene s = orbitScene("composite", 48, 30, 20);
-    s.transferFunction = preset("bonsai.json");
-    // A denser copy of the preset so that many rays reach the default 0.99.
-    std::vector<ControlPoint> points = s.transferFunction->points();
-    for (ControlPoint& p : points) p.alpha = std::min(1.0f, p.alpha * 4.0f);
-    s.transferFunction = TransferFunction(points);
-    const Comparison c = compareWithRenderer(dataset("bonsai.nrrd"), s);
-    EXPECT_GT(c.hits, c.pixels / 3);
-    EXPECT_GT(c.stopped, 10) << "the scene should exercise early termination";
-    EXPECT_LE(c.maxError, kPixelTolerance) << "worst pixel (" << c.worstX << ", " << c.worstY << ")";
+struct PixelCase {
+    const char* name;
+    const char* dataset;
+    Scene scene;
+};
+
+std::vector<PixelCase> pixelCases() {
+    std::vector<PixelCase> cases;
+    Scene composite = orbitScene("composite", 40, 30, 20);
+    composite.transferFunction = preset("bonsai.json");
+    std::vector<ControlPoint> dense = composite.transferFunction->points();
+    for (ControlPoint& p : dense) p.alpha = std::min(1.0f, p.alpha * 4.0f);  // rays that stop early
+    composite.transferFunction = TransferFunction(dense);
+    cases.push_back({"composite_early_termination", "bonsai.nrrd", composite});
+    Scene shaded = composite;
+    shaded.parameters = {{"shading", 1}, {"jitter", 1}};
+    cases.push_back({"composite_shaded_jitter", "bonsai.nrrd", shaded});
+    Scene backToFront = composite;
+    backToFront.parameters = {{"back_to_front", 1}};
+    cases.push_back({"composite_back_to_front", "bonsai.nrrd", backToFront});
+    Scene cut = composite;
+    cut.cuttingPlane = CuttingPlane{};
+    cut.cuttingPlane->normal = glm::dvec3(1.0, 0.3, 0.0);
+    cases.push_back({"composite_cutting_plane", "bonsai.nrrd", cut});
+    for (const char* r : {"mip", "minip", "average"}) cases.push_back({r, "tooth.nrrd", orbitScene(r, 40, 40, 15)});
+    Scene slab = orbitScene("slab_mip", 40, 40, 15);
+    slab.parameters = {{"thickness", 30}, {"offset", 10}};
+    cases.push_back({"slab_mip", "tooth.nrrd", slab});
+    Scene firsthit = orbitScene("firsthit", 40, 30, 20);
+    firsthit.parameters = {{"threshold", 120}};
+    cases.push_back({"firsthit", "bonsai.nrrd", firsthit});
+    Scene iso = orbitScene("iso", 40, 30, 20);
+    iso.parameters = {{"isovalue", 100}};
+    cases.push_back({"iso", "tooth.nrrd", iso});
+    Scene tf2d = orbitScene("tf2d", 40, 30, 20);
+    tf2d.transferFunction2D = TransferFunction2D::load(datasetPath("tf2d/bonsai.json"));
+    cases.push_back({"tf2d", "bonsai.nrrd", tf2d});
+    return cases;
 }
 
-TEST_F(RayProfileTest, CompositeToothWithoutEarlyTerminationMatchesTheRenderer) {
-    Scene s = orbitScene("composite", 48, 215, -155, Projection::Orthographic);
-    s.transferFunction = preset("tooth.json");
-    s.parameters["early_termination"] = 1.0;
+TEST_F(RayProfileTest, TheLastPixelOfEveryProfileIsTheRenderersPixel) {
+    for (const PixelCase& c : pixelCases()) {
+        engine().setVolume(dataset(c.dataset));
+        const Image image = engine().render(c.scene);
+        double worst = 0.0;
+        int hits = 0, stopped = 0, pixels = 0;
+        for (int y = 2; y < c.scene.height; y += 6)
+            for (int x = 2; x < c.scene.width; x += 6) {
+                const RayProfile p = engine().profileRay(c.scene, x, y);
+                ++pixels, hits += p.hitsVolume, stopped += p.stoppedAt >= 0;
+                const glm::vec3 shown = profilePixel(p, c.scene.background);
+                for (int k = 0; k < 3; ++k) worst = std::max(worst, double(std::abs(shown[k] - image.at(x, y)[k])));
+                if (p.hitsVolume && !p.samples.empty())  // the last sample's pixel is the whole ray's
+                    EXPECT_LE(glm::length(p.samples.back().accumulated - p.result), 1e-4f) << c.name;
+            }
+        std::printf("  %s: %d pixels, %d hit, %d stopped early; largest difference %.3f/255\n", c.name, pixels, hits,
+                    stopped, worst * 255.0);
+        EXPECT_GT(hits, pixels / 4) << c.name;
+        EXPECT_LE(worst, kPixelTolerance) << c.name;
+        if (std::string(c.name) == "composite_early_termination") EXPECT_GT(stopped, 2);
+    }
+    // The profile's draws leave the engine's image alone.
+    const PixelCase last = pixelCases().back();
+    engine().setVolume(dataset(last.dataset));
+    const Image before = engine().render(last.scene);
+    engine().profileRay(last.scene, 20, 20);
+    EXPECT_EQ(engine().readBack().rgba, before.rgba);
+}
+
+// ---------------------------------------------------------------------------
+// The samples are the data's.
+
+Scene columnScene() {
+    Scene s;
+    s.renderer = "mip";
+    s.camera.view = "+z";
+    s.camera.projection = Projection::Orthographic;
+    s.width = 103, s.height = 94;  // one pixel per voxel column of tooth (103 x 94 x 161)
     s.step = 1.0;
-    s.background = glm::vec3(0.2f, 0.3f, 0.5f);
-    const Comparison c = compareWithRenderer(dataset("tooth.nrrd"), s);
-    EXPECT_GT(c.hits, c.pixels / 3);
-    EXPECT_EQ(c.stopped, 0);
-    EXPECT_LE(c.maxError, kPixelTolerance) << "worst pixel (" << c.worstX << ", " << c.worstY << ")";
+    s.interpolation = Interpolation::Nearest;
+    return s;
 }
 
-// Shading (gradients, Phong), pre-classification, jitter and the fallback
-// ramp (no transfer function) are modelled too.
-TEST_F(RayProfileTest, CompositeShadedPreclassifiedJitteredMatchesTheRenderer) {
-    Scene s = orbitScene("composite", 40, 120, 35);
-    s.transferFunction = preset("tooth.json");
-    s.parameters = {{"shading", 1}, {"preclassify", 1}, {"jitter", 1}, {"light_azimuth", 30}};
-    const Comparison shaded = compareWithRenderer(dataset("tooth.nrrd"), s, 3);
-    EXPECT_LE(shaded.maxError, kPixelTolerance) << "worst pixel (" << shaded.worstX << ", " << shaded.worstY << ")";
-
-    Scene ramp = orbitScene("composite", 32, -40, 10);
-    ramp.window = glm::dvec2(60.0, 255.0);
-    const Comparison fallback = compareWithRenderer(dataset("bonsai.nrrd"), ramp, 3);
-    EXPECT_LE(fallback.maxError, kPixelTolerance) << "worst pixel (" << fallback.worstX << ", " << fallback.worstY
-                                                  << ")";
-}
-
-// Gradient-opacity modulation (the gradient_opacity stage) weights each
-// sample's opacity by a ramp of |grad f|; with the ramp off the same pixels
-// differ by far more than the tolerance, so the profile must model it.
-TEST_F(RayProfileTest, CompositeWithGradientOpacityMatchesTheRenderer) {
-    Scene s = orbitScene("composite", 40, 30, 20);
-    s.transferFunction = preset("bonsai.json");
-    s.parameters = {{"gradient_opacity", 1}, {"gradient_low", 4}, {"gradient_high", 30}};
-    const Comparison c = compareWithRenderer(dataset("bonsai.nrrd"), s, 3);
-    EXPECT_GT(c.hits, c.pixels / 3);
-    EXPECT_LE(c.maxError, kPixelTolerance) << "worst pixel (" << c.worstX << ", " << c.worstY << ")";
-    Scene plain = s;
-    plain.parameters = {};
-    EXPECT_GT(compareWithRenderer(dataset("bonsai.nrrd"), s, 3, &plain).maxError, 10 * kPixelTolerance);
-}
-
-// Local ambient occlusion (the ambient_occlusion stage) darkens each sample's
-// colour by the opacity around it; the profile models it too.
-TEST_F(RayProfileTest, CompositeWithAmbientOcclusionMatchesTheRenderer) {
-    Scene s = orbitScene("composite", 40, 40, 25);
-    s.transferFunction = preset("tooth.json");
-    s.parameters = {{"ambient_occlusion", 1}, {"ao_radius", 6}, {"ao_strength", 1}, {"shading", 1}};
-    const Comparison c = compareWithRenderer(dataset("tooth.nrrd"), s, 3);
-    EXPECT_GT(c.hits, c.pixels / 4);
-    EXPECT_LE(c.maxError, kPixelTolerance) << "worst pixel (" << c.worstX << ", " << c.worstY << ")";
-    Scene plain = s;
-    plain.parameters = {{"shading", 1}};
-    EXPECT_GT(compareWithRenderer(dataset("tooth.nrrd"), s, 3, &plain).maxError, 10 * kPixelTolerance);
-}
-
-// A label map (the labels stage) and a fused second volume replace the
-// classification; the profile classifies as their handout and scene.h say.
-TEST_F(RayProfileTest, CompositeWithLabelsAndFusionMatchesTheRenderer) {
-    for (const char* name : {"tooth_masks.json", "headsq_hu_anisotropic.json"}) {
-        Scene s = Scene::load(std::string(VOXLAB_SOURCE_DIR) + "/reference/labels/scenes/" + name);
-        s.width = s.height = 40;
-        const Volume volume = loadVolume(s.dataset);
-        const Comparison c = compareWithRenderer(volume, s, 3);
-        EXPECT_GT(c.hits, c.pixels / 4) << name;
-        EXPECT_LE(c.maxError, kPixelTolerance) << name << ": worst pixel (" << c.worstX << ", " << c.worstY << ")";
-        Scene unlabelled = s;
-        unlabelled.labels.reset();
-        EXPECT_GT(compareWithRenderer(volume, s, 3, &unlabelled).maxError, 10 * kPixelTolerance) << name;
+TEST_F(RayProfileTest, AlongAVoxelColumnTheSamplesAreItsVoxels) {
+    const Volume& volume = dataset("tooth.nrrd");
+    engine().setVolume(volume);
+    const RayProfile p = engine().profileRay(columnScene(), 40, 50);
+    ASSERT_EQ(p.samples.size(), 161u) << p.why;
+    EXPECT_NEAR(p.tEntry + 0.5, p.samples[0].t, 1e-4);
+    double maximum = -1.0;
+    for (int k = 0; k < 161; ++k) {
+        // (Read as a normalised texel times 255: within a float's rounding.)
+        EXPECT_NEAR(p.samples[k].value, volume.value(40, 50, k), 1e-3) << "sample " << k;
+        EXPECT_NEAR(p.samples[k].position.z, k + 0.5, 1e-3);
+        maximum = std::max(maximum, volume.value(40, 50, k));
+        EXPECT_NEAR(p.samples[k].runningMax, maximum, 1e-3) << "sample " << k;
     }
-    Scene fused = orbitScene("composite", 40, 30, 20);
-    fused.transferFunction = preset("tooth.json");
-    fused.fusion = Fusion{"phantom:shells:48", FusionMode::Checkerboard, std::nullopt,
-                          TransferFunction({{0, glm::vec3(0.2f, 0.5f, 1.0f), 0.0f}, {80, glm::vec3(0.2f, 0.5f, 1.0f), 0.3f}}),
-                          10.0, std::nullopt, glm::dvec3(1.0, 0.0, 0.0)};
-    const Volume tooth = dataset("tooth.nrrd");
-    for (FusionMode mode : {FusionMode::Checkerboard, FusionMode::Sum}) {
-        fused.fusion->mode = mode;
-        const Comparison c = compareWithRenderer(tooth, fused, 3);
-        EXPECT_LE(c.maxError, kPixelTolerance) << fusionModeName(mode);
+    ASSERT_GE(p.chosen, 0);
+    EXPECT_NEAR(p.samples[p.chosen].value, maximum, 1e-3);
+}
+
+// ---------------------------------------------------------------------------
+// The student's code, bugs included.
+
+TEST_F(RayProfileTest, APlantedBugInMipShowsInTheProfile) {
+    // mip.glsl with every other sample skipped: an easy slip (m += 2) that
+    // the image hides where the maximum is broad.
+    TempDir root("voxlab-profile");
+    std::ifstream in(projectRoot() + "/reference/mip/mip.glsl");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string loop = "for (int m = 0; m < n; ++m)";
+    ASSERT_NE(text.find(loop), std::string::npos) << "the reference's loop changed: update the planted bug";
+    text.replace(text.find(loop), loop.size(), "for (int m = 0; m < n; m += 2)");
+    std::filesystem::create_directories(root.path() / "mip");
+    std::ofstream(root.path() / "mip" / "mip.glsl") << text;
+
+    const Volume& volume = dataset("tooth.nrrd");
+    RenderEngine buggy(root.path().string());
+    buggy.setVolume(volume);
+    const RayProfile p = buggy.profileRay(columnScene(), 40, 50);
+    ASSERT_EQ(p.samples.size(), 161u) << p.why;
+    double all = -1.0, even = -1.0;
+    int differ = 0;
+    for (int k = 0; k < 161; ++k) {
+        all = std::max(all, volume.value(40, 50, k));
+        if (k % 2 == 0) even = std::max(even, volume.value(40, 50, k));
+        EXPECT_NEAR(p.samples[k].runningMax, even, 1e-3) << "sample " << k << ": the buggy loop's maximum";
+        differ += std::abs(p.samples[k].runningMax - all) > 0.5;
     }
+    EXPECT_GT(differ, 0) << "the planted bug should change the running maximum along this column";
 }
 
-// Pre-integration (the preintegration stage): each sample stands for the
-// segment to the next one. The profile integrates each segment itself, in
-// double; the GPU interpolates a 256x256 table whose texels are one value
-// apart on 8-bit data, so a segment's colour and opacity differ by the
-// table's bilinear error on the thin peaks (measured: under 1 grey level
-// here): the tolerance is 2 levels, and post-classification of the same
-// rays misses it by far more.
-TEST_F(RayProfileTest, CompositePreintegratedFollowsTheRenderer) {
-    Scene s = Scene::load(std::string(VOXLAB_SOURCE_DIR) + "/reference/preintegration/scenes/bonsai_thin_peaks.json");
-    s.width = s.height = 40;
-    s.interpolation = Interpolation::Trilinear;
-    const Comparison c = compareWithRenderer(dataset("bonsai.nrrd"), s, 3);
-    EXPECT_GT(c.hits, c.pixels / 4);
-    EXPECT_LE(c.maxError, 2.0 / 255.0) << "worst pixel (" << c.worstX << ", " << c.worstY << ")";
-    Scene post = s;
-    post.parameters["preintegrated"] = 0.0;
-    EXPECT_GT(compareWithRenderer(dataset("bonsai.nrrd"), s, 3, &post).maxError, 20 * 2.0 / 255.0);
+TEST_F(RayProfileTest, AStageNotImplementedSaysSo) {
+    RenderEngine starter(projectRoot() + "/assignments");
+    starter.setVolume(dataset("tooth.nrrd"));
+    const RayProfile p = starter.profileRay(columnScene(), 40, 50);
+    EXPECT_NE(p.why.find("not implemented"), std::string::npos) << p.why;
 }
 
-// Shadows (the shadows stage): the profile follows each sample's shadow ray
-// itself; the GPU reads a light volume of such rays from voxel centres,
-// interpolated. Where the transmittance jumps within one light-volume voxel
-// (the top of the opaque slab, the rim of a shadow) the two differ by up to
-// that jump, tens of grey levels, so the bound is on the share of pixels:
-// at most 2% of them off by more than 8 levels (measured: 0.8%). Without
-// shadows, the shadow's pixels are (6%: it covers a small part of the view).
-TEST_F(RayProfileTest, CompositeWithShadowsFollowsTheRenderer) {
-    Scene s = Scene::load(std::string(VOXLAB_SOURCE_DIR) + "/reference/shadows/scenes/sphere_over_slab.json");
-    s.width = s.height = 40;
-    s.interpolation = Interpolation::Trilinear;
-    const Volume phantom = loadVolume("phantom:sphere-over-slab:64");
-    const Comparison c = compareWithRenderer(phantom, s, 2);
-    EXPECT_GT(c.hits, c.pixels / 4);
-    std::printf("  %.1f%% of the pixels off by more than 8 levels\n", 100.0 * c.shareOver(8.0 / 255.0));
-    EXPECT_LE(c.shareOver(8.0 / 255.0), 0.02);
-    Scene lit = s;
-    lit.parameters["shadows"] = 0.0;
-    const double unshadowed = compareWithRenderer(phantom, s, 2, &lit).shareOver(8.0 / 255.0);
-    std::printf("  without shadows: %.1f%% of the pixels off by more than 8 levels\n", 100.0 * unshadowed);
-    EXPECT_GT(unshadowed, 0.04);
-}
+// ---------------------------------------------------------------------------
+// What compositing applied, sample by sample.
 
-TEST_F(RayProfileTest, ProjectionsMatchTheRenderer) {
-    Scene mip = orbitScene("mip", 40, 60, -25, Projection::Orthographic);
-    mip.window = glm::dvec2(20.0, 220.0);
-    EXPECT_LE(compareWithRenderer(dataset("bonsai.nrrd"), mip).maxError, kPixelTolerance);
-
-    // MinIP inside a region of interest (outside air would make it black).
-    Scene minip = orbitScene("minip", 40, 200, 30);
-    minip.roi = RegionOfInterest{glm::dvec3(20, 20, 30), glm::dvec3(80, 75, 130)};
-    EXPECT_LE(compareWithRenderer(dataset("tooth.nrrd"), minip).maxError, kPixelTolerance);
-
-    // The average through a transfer function, over a coloured background.
-    Scene average = orbitScene("average", 40, 300, 15);
-    average.transferFunction = preset("tooth.json");
-    average.background = glm::vec3(0.1f, 0.4f, 0.2f);
-    EXPECT_LE(compareWithRenderer(dataset("tooth.nrrd"), average).maxError, kPixelTolerance);
-}
-
-TEST_F(RayProfileTest, FirstHitAndIsoMatchTheRenderer) {
-    Scene first = orbitScene("firsthit", 40, 30, 20);
-    first.parameters["threshold"] = 120;
-    first.window = glm::dvec2(0.0, 255.0);
-    const Comparison c = compareWithRenderer(dataset("bonsai.nrrd"), first);
-    EXPECT_GT(c.stopped, 10);
-    EXPECT_LE(c.maxError, kPixelTolerance);
-
-    Scene depth = first;
-    depth.parameters["depth"] = 1;
-    depth.interpolation = Interpolation::Nearest;
-    EXPECT_LE(compareWithRenderer(dataset("bonsai.nrrd"), depth).maxError, kPixelTolerance);
-
-    // The isosurface, refined and shaded.
-    Scene iso = orbitScene("iso", 40, 150, -30);
-    iso.parameters["isovalue"] = 180;
-    EXPECT_LE(compareWithRenderer(dataset("tooth.nrrd"), iso).maxError, kPixelTolerance);
-}
-
-// The comparison notices samples half a step off: profiles whose rays start
-// at a random offset in [-1/2, 1/2) of a step (jitter) against a render
-// without it must differ beyond the tolerance somewhere.
-TEST_F(RayProfileTest, TheComparisonNoticesSamplesMovedAlongTheRay) {
+TEST_F(RayProfileTest, CompositingAppliedTheTransferFunctionsOpacityCorrectedForTheStep) {
+    const Volume& volume = dataset("bonsai.nrrd");
     Scene s = orbitScene("composite", 32, 30, 20);
-    s.step = 1.0;
-    std::vector<ControlPoint> points = preset("bonsai.json").points();
-    for (ControlPoint& p : points) p.alpha = std::min(1.0f, p.alpha * 4.0f);
-    s.transferFunction = TransferFunction(points);
-    Scene jittered = s;
-    jittered.parameters["jitter"] = 1;
-    EXPECT_GT(compareWithRenderer(dataset("bonsai.nrrd"), s, 2, &jittered).maxError, kPixelTolerance);
+    s.transferFunction = preset("bonsai.json");
+    s.step = 0.7;
+    engine().setVolume(volume);
+    const RayProfile p = engine().profileRay(s, 12, 8);  // a ray through the pot
+    ASSERT_TRUE(p.hitsVolume);
+    int compared = 0;
+    const std::size_t end = p.stoppedAt >= 0 ? std::size_t(p.stoppedAt) + 1 : p.samples.size();
+    for (std::size_t i = 0; i < end; ++i) {
+        const double before = i ? p.samples[i - 1].accumulated.a : 0.0;
+        if (before > 0.9) break;  // the opacity is then a difference of nearly equal numbers
+        const double a = cpuTransferFunction(s.transferFunction->points(), p.samples[i].value).a;
+        const double corrected = 1.0 - std::pow(1.0 - a, s.step);
+        EXPECT_NEAR(p.samples[i].classified.a, corrected, 2e-3) << "sample " << i << ", value " << p.samples[i].value;
+        compared += corrected > 0.0;
+    }
+    EXPECT_GT(compared, 5) << "the ray should cross visible material";
 }
 
 // ---------------------------------------------------------------------------
 // Why a ray stopped.
 
 TEST_F(RayProfileTest, SaysWhyARayTerminatesEarly) {
-    const Volume& volume = dataset("bonsai.nrrd");
     Scene s = orbitScene("composite", 32, 30, 20);
     s.transferFunction = TransferFunction({{30.0, glm::vec3(1.0f), 0.0f}, {60.0, glm::vec3(1.0f, 0.5f, 0.2f), 1.0f}});
-    const RayProfile p = computeRayProfile(volume, s, 12, 8);  // a ray through the pot
+    engine().setVolume(dataset("bonsai.nrrd"));
+    const RayProfile p = engine().profileRay(s, 12, 8);  // a ray through the pot
     ASSERT_TRUE(p.hitsVolume);
-    ASSERT_GE(p.stoppedAt, 1);
+    ASSERT_GE(p.stoppedAt, 1) << p.why;
     EXPECT_EQ(p.why.rfind("early ray termination: accumulated opacity ", 0), 0u) << p.why;
     EXPECT_NE(p.why.find(">= 0.99"), std::string::npos) << p.why;
     EXPECT_GE(p.samples[p.stoppedAt].accumulated.a, 0.99f);
     EXPECT_LT(p.samples[p.stoppedAt - 1].accumulated.a, 0.99f);
     EXPECT_LT(p.stoppedAt + 1, int(p.samples.size())) << "the ray should have had samples left";
-    EXPECT_FLOAT_EQ(p.result.a, p.samples[p.stoppedAt].accumulated.a);
 
-    // Back to front composites everything, and says so.
-    s.parameters["back_to_front"] = 1;
-    const RayProfile all = computeRayProfile(volume, s, 12, 8);
+    s.parameters["back_to_front"] = 1;  // composites everything, and says so
+    const RayProfile all = engine().profileRay(s, 12, 8);
     EXPECT_EQ(all.stoppedAt, -1);
-    EXPECT_EQ(all.why.rfind("the ray left the volume", 0), 0u) << all.why;
+    EXPECT_EQ(all.why, "the ray left the volume");
 }
 
 TEST_F(RayProfileTest, SaysWhenARayMissesTheVolume) {
     Scene s = orbitScene("composite", 32, 30, 20);
-    s.background = glm::vec3(0.25f, 0.5f, 0.75f);
+    engine().setVolume(dataset("tooth.nrrd"));
     // The perspective orbit fits the bounding sphere: the corner's ray misses the box.
-    const RayProfile p = computeRayProfile(dataset("tooth.nrrd"), s, 0, 0);
+    const RayProfile p = engine().profileRay(s, 0, 0);
     EXPECT_FALSE(p.hitsVolume);
     EXPECT_TRUE(p.samples.empty());
     EXPECT_EQ(p.why, "the ray misses the volume");
     EXPECT_EQ(profilePixel(p, s.background), s.background);
-
-    // So does every ray when the region of interest lies outside the box.
-    s.roi = RegionOfInterest{glm::dvec3(500.0), glm::dvec3(600.0)};
-    EXPECT_FALSE(computeRayProfile(dataset("tooth.nrrd"), s, 16, 16).hitsVolume);
+    s.roi = RegionOfInterest{glm::dvec3(500.0), glm::dvec3(600.0)};  // outside the box: every ray
+    EXPECT_FALSE(engine().profileRay(s, 16, 16).hitsVolume);
 }
 
-TEST_F(RayProfileTest, SaysWhereTheFirstHitIs) {
+TEST_F(RayProfileTest, SaysWhereTheFirstHitAndTheSurfaceAre) {
     Scene s = orbitScene("firsthit", 32, 30, 20);
     s.parameters["threshold"] = 150;
-    const RayProfile p = computeRayProfile(dataset("bonsai.nrrd"), s, 12, 8);  // a ray through the pot
+    engine().setVolume(dataset("bonsai.nrrd"));
+    const RayProfile p = engine().profileRay(s, 12, 8);  // a ray through the pot
     ASSERT_GE(p.stoppedAt, 0) << p.why;
-    const double hit = p.samples[p.stoppedAt].value;
-    EXPECT_GE(hit, 150.0);
+    EXPECT_GE(p.samples[p.stoppedAt].value, 150.0);
     for (int m = 0; m < p.stoppedAt; ++m) EXPECT_LT(p.samples[m].value, 150.0) << "sample " << m;
-    char expected[96];
-    std::snprintf(expected, sizeof expected, "first hit: value %g >= threshold 150", hit);
-    EXPECT_EQ(p.why, expected);
     EXPECT_EQ(p.chosen, p.stoppedAt);
+
+    s.renderer = "iso";
+    s.parameters = {{"isovalue", 150}};
+    engine().setVolume(dataset("tooth.nrrd"));
+    const RayProfile iso = engine().profileRay(s, 16, 16);
+    ASSERT_GE(iso.stoppedAt, 1) << iso.why;
+    EXPECT_NE(iso.samples[iso.stoppedAt - 1].value >= 150.0, iso.samples[iso.stoppedAt].value >= 150.0)
+        << "the surface lies between the stop and the sample before it";
+    for (int m = 1; m < iso.stoppedAt; ++m)
+        EXPECT_EQ(iso.samples[m - 1].value >= 150.0, iso.samples[m].value >= 150.0) << "an earlier crossing at " << m;
 }
 
-TEST_F(RayProfileTest, SaysBetweenWhichSamplesTheIsovalueIsCrossed) {
-    Scene s = orbitScene("iso", 32, 30, 20);
-    s.parameters["isovalue"] = 150;
-    const RayProfile p = computeRayProfile(dataset("tooth.nrrd"), s, 16, 16);
-    ASSERT_GE(p.stoppedAt, 1) << p.why;
-    EXPECT_EQ(p.why, "isovalue crossed between samples " + std::to_string(p.stoppedAt - 1) + " and " +
-                         std::to_string(p.stoppedAt));
-    EXPECT_NE(p.samples[p.stoppedAt - 1].value >= 150.0, p.samples[p.stoppedAt].value >= 150.0);
-    EXPECT_GE(p.hitT, p.samples[p.stoppedAt - 1].t);
-    EXPECT_LE(p.hitT, p.samples[p.stoppedAt].t);
-}
-
-// ---------------------------------------------------------------------------
-// The samples themselves, and what is not modelled.
-
-TEST_F(RayProfileTest, SamplesSitHalfAStepApartFromTheEntry) {
-    const Volume& volume = dataset("tooth.nrrd");
-    Scene s;
-    s.renderer = "mip";
-    s.camera.view = "+z";
-    s.camera.projection = Projection::Orthographic;
-    s.width = 103, s.height = 94;  // one pixel per voxel column
-    s.step = 1.0;
-    s.interpolation = Interpolation::Nearest;
-    const RayProfile p = computeRayProfile(volume, s, 40, 50);
-    ASSERT_EQ(p.samples.size(), 161u);
-    EXPECT_NEAR(p.tEntry + 0.5, p.samples[0].t, 1e-9);
-    double maximum = -1.0;
-    for (int k = 0; k < 161; ++k) {
-        // Sample k of a +z ray through a voxel column is voxel (40, 50, k).
-        EXPECT_EQ(p.samples[k].value, volume.value(40, 50, k)) << "sample " << k;
-        EXPECT_NEAR(p.samples[k].position.z, k + 0.5, 1e-9);
-        maximum = std::max(maximum, p.samples[k].value);
-        EXPECT_EQ(p.samples[k].runningMax, maximum);
+TEST_F(RayProfileTest, SlicesHaveNoRayAndPixelsOutsideTheImageAreAnError) {
+    engine().setVolume(dataset("tooth.nrrd"));
+    const RayProfile p = engine().profileRay(orbitScene("texslice3d", 32, 30, 20), 16, 16);
+    EXPECT_TRUE(p.samples.empty());
+    EXPECT_NE(p.why.find("draws slices"), std::string::npos) << p.why;
+    try {
+        engine().profileRay(orbitScene("mip", 32, 30, 20), 32, 0);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "ray profile: pixel (32, 0) is outside the 32x32 image");
     }
-    EXPECT_EQ(p.samples[p.chosen].value, maximum);
-}
-
-TEST_F(RayProfileTest, OtherRenderersGiveValuesOnly) {
-    Scene s = orbitScene("slicer", 32, 30, 20);
-    const RayProfile p = computeRayProfile(dataset("tooth.nrrd"), s, 16, 16);
-    EXPECT_TRUE(p.hitsVolume);
-    EXPECT_FALSE(p.modelled);
-    EXPECT_FALSE(p.samples.empty());
-    EXPECT_EQ(p.why, "not modelled for slicer");
-    EXPECT_THROW(computeRayProfile(dataset("tooth.nrrd"), s, 32, 0), Error);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #define VOXLAB_CLASSIFY_GLSL
 
 #include "voxlab/bricks.glsl"
+#include "voxlab/profile.glsl"
 
 uniform vec2 u_window;
 uniform int u_has_tf;
@@ -46,6 +47,7 @@ float opacity_correction(float alpha, float step_units) {
 // function, its colour with its opacity. The result is premultiplied
 // (rgb already times alpha), ready for finish() in voxlab/output.glsl.
 vec4 display_value(float value) {
+    voxlab_profile_scalar = value;  // the ray profile's record (voxlab/profile.glsl)
     // A bricked pass keeps the value itself; the resolve pass shows it.
     if (u_bricked != 0 && u_brick_combine >= VOXLAB_BRICK_LARGEST) return vec4(value);
     if (u_has_tf == 0) return vec4(vec3(apply_window(value)), 1.0);

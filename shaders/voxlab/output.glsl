@@ -12,6 +12,7 @@
 #include "voxlab/not_implemented.glsl"
 #include "voxlab/sample_counter.glsl"
 #include "voxlab/bricks.glsl"
+#include "voxlab/profile.glsl"
 
 uniform vec3 u_background;
 uniform int u_layer;
@@ -22,7 +23,7 @@ vec4 finish(vec4 premultiplied) {
     if (u_report_stubs != 0) return stubs_reached_pixel();
     if (voxlab_not_implemented) return not_implemented_pattern();
     if (u_bricked != 0) return brick_result(premultiplied, voxlab_brick_samples);  // voxlab/bricks.glsl
-    if (u_layer != 0) return premultiplied;
+    if (u_layer != 0 || u_profile != 0) return premultiplied;
     return vec4(premultiplied.rgb + (1.0 - premultiplied.a) * u_background, 1.0);
 }
 

@@ -16,6 +16,7 @@
 
 #include "voxlab/volume.glsl"
 #include "voxlab/sample_counter.glsl"
+#include "voxlab/profile.glsl"
 
 uniform vec3 u_cam_position;
 uniform vec3 u_cam_forward;
@@ -42,10 +43,14 @@ struct Ray {
     float t_exit;    // where it leaves
 };
 
-// The ray through this fragment's pixel centre.
+Ray voxlab_profile_ray;  // the ray sample_count() last saw (voxlab/profile.glsl)
+
+// The ray through this fragment's pixel centre (in the ray profile's run,
+// through the profiled pixel's).
 Ray camera_ray() {
     // gl_FragCoord counts rows from the bottom; image rows count from the top.
     vec2 pixel = vec2(gl_FragCoord.x, u_image_size.y - gl_FragCoord.y);
+    if (u_profile != 0) pixel = u_profile_pixel + 0.5;
     vec2 uv = (pixel - 0.5 * u_image_size) * u_pixel_scale;
     Ray ray;
     if (u_orthographic != 0) {
@@ -98,9 +103,14 @@ bool inside_region(vec3 p) {
     return in_roi && (u_clip_plane == 0 || in_half_space(p, u_clip_point, u_clip_normal));
 }
 
-// How many samples fit between t_entry and t_exit.
+// How many samples fit between t_entry and t_exit (in the ray profile's
+// run, no more than this fragment's sample and the ones before it).
 int sample_count(Ray ray) {
-    return int(floor((ray.t_exit - ray.t_entry) / u_step + 0.5));
+    int n = int(floor((ray.t_exit - ray.t_entry) / u_step + 0.5));
+    if (u_profile == 0) return n;
+    voxlab_profile_ray = ray;
+    voxlab_profile_samples = n;
+    return min(n, voxlab_profile_index() + 1);
 }
 
 // A bricked render (voxlab/bricks.glsl): the part of the clipped ray whose
@@ -150,6 +160,7 @@ vec3 sample_position(Ray ray, int m) {
 // the same in every frame (a hash of the pixel's coordinates), for jitter.
 float pixel_random() {
     uvec2 q = uvec2(gl_FragCoord.xy);
+    if (u_profile != 0) q = uvec2(u_profile_pixel.x, u_image_size.y - 1.0 - u_profile_pixel.y);
     uint h = q.x * 1973u + q.y * 9277u + 26699u;
     h = (h ^ (h >> 15)) * 2654435769u;
     h ^= h >> 13;
@@ -168,6 +179,18 @@ float depth_grey(Ray ray, float t) {
     float radius = 0.5 * length(u_volume_extent);
     float t_near = dot(centre - ray.origin, ray.direction) - radius;
     return clamp(1.0 - (t - t_near) / (2.0 * radius), 0.0, 1.0);
+}
+
+// The profile's record of this fragment's sample (voxlab/profile.glsl):
+// (value, displayed value, t, samples of the whole ray); the last is -1
+// when the ray missed the region and -2 when a stage is not implemented.
+vec4 voxlab_profile_record() {
+    if (voxlab_not_implemented) return vec4(0.0, 0.0, 0.0, -2.0);
+    if (voxlab_profile_samples < 0) return vec4(0.0, 0.0, 0.0, -1.0);
+    int i = voxlab_profile_index();
+    float t = voxlab_profile_ray.t_entry + (float(i) + 0.5) * u_step;
+    float value = i < voxlab_profile_samples ? sample_volume(sample_location(voxlab_profile_ray, i)) : 0.0;
+    return vec4(value, voxlab_profile_scalar, t, float(voxlab_profile_samples));
 }
 
 #include "voxlab/empty_space.glsl"

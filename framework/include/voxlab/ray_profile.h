@@ -1,37 +1,31 @@
-// voxlab: the ray profile of one pixel, computed on the CPU.
+// voxlab: the ray profile of one pixel, as the renderer's own shaders
+// compute it.
 //
 // The classic figure of volume-rendering lectures: the samples along one
 // pixel's ray plotted against depth (value, opacity per sample, accumulated
 // opacity and colour, running maximum) and the point where the ray stopped.
-// computeRayProfile() follows the ray the way the ray-casting renderers do
-// (README, "Rendering conventions"), independently of their GLSL:
-//  - the ray from Camera::make + Camera::ray through the pixel's centre,
-//    clipped to the volume's box cropped by the scene's roi and clip planes (and, for
-//    slab_mip, to the slab; for a cutting plane, to the scene renderer's
-//    half-space);
-//  - samples at t_entry + (m + 1/2) step for floor((t_exit - t_entry)/step + 1/2)
-//    values of m, read by nearest or trilinear interpolation ("hardware" is
-//    read as trilinear: the GPU's 8-bit weights are not modelled);
-//  - composite: the scene's transfer function (or the engine's fallback, a
-//    white ramp over the window from opacity 0 to 0.1 per unit length),
-//    opacity-corrected for the step, pre- or post-classified, Phong-shaded
-//    when `shading` is on, composited front to back until the accumulated
-//    opacity reaches `early_termination` (jitter moves the start as the GPU
-//    does, by the same per-pixel hash); with the optional stages as their
-//    handouts define them: gradient opacity, ambient occlusion,
-//    pre-integration (each segment integrated in double, where the GPU
-//    interpolates a table) and shadows (each sample's shadow ray followed,
-//    where the GPU interpolates a light volume: they differ where the
-//    transmittance jumps within one light-volume voxel); with a label map or
-//    a fused second volume, each sample classified as the labels handout and
-//    scene.h define them (ray_profile_scene.cpp);
-//  - mip, slab_mip, minip, average: running maximum, minimum, mean, shown
-//    through the window or the transfer function;
-//  - firsthit: the first sample at or above `threshold`;
-//  - iso: the first sign change of value - isovalue between two samples,
-//    refined by bisection, shaded.
-// Renderers it does not model (texslice2d, texslice3d, tf2d, slicer) give the
-// ray and the samples' values only; `why` says "not modelled for <renderer>".
+// RenderEngine::profileRay() takes it from the engine's shaders, the
+// student's stages among them, in an instrumented run
+// (shaders/voxlab/profile.glsl): each fragment of a small target follows
+// the pixel's ray cut after one more sample, so the stage's own loop gives
+// the pixel after each sample. What a profile shows is therefore what the
+// code under test does (a bug in mip.glsl shows in MIP's running maximum),
+// not a model of what it should do. From the run:
+//  - every sample's position along the ray and its value as the sampling
+//    stage reads it;
+//  - the pixel (premultiplied, before the background) if the ray ended
+//    after the sample: `accumulated`;
+//  - compositing (ProfileModel::Composite): each sample's colour and
+//    opacity as the stage applied them, from two consecutive pixels
+//    (front to back, A_i = A_{i-1} + (1 - A_{i-1}) a_i), and where the loop
+//    stopped taking samples;
+//  - MIP, MinIP, the mean: the value the entry shader displayed after each
+//    sample (its running maximum, minimum or mean);
+//  - first hit and the isosurface: the first sample after which the pixel
+//    holds a hit.
+// The ray is the one the renderer follows (jitter, the region of interest,
+// clip planes, a cutting plane's half-space, slab_mip's slab: as the entry
+// shader clips it), with empty-space skipping off, as grading renders.
 #pragma once
 
 #include <string>
@@ -41,6 +35,7 @@
 
 #include "voxlab/renderer.h"
 #include "voxlab/scene.h"
+#include "voxlab/transfer_function.h"
 #include "voxlab/volume.h"
 
 namespace voxlab {
@@ -87,10 +82,26 @@ struct RayProfile {
     glm::vec4 result{0.0f};
 };
 
-// Follows the ray of pixel (px, py) of `scene` through `volume` (the scene's
-// dataset is ignored). Throws voxlab::Error for a pixel outside the image or
-// an unknown renderer.
-RayProfile computeRayProfile(const Volume& volume, const Scene& scene, int px, int py);
+// What the instrumented run read back (RenderEngine::profileRay), for
+// fillRayProfile(): per sample kept, the pixel after it and the record
+// (value, displayed value, t, samples of the whole ray); the whole ray's
+// pixel; the whole ray's sample count (-1: the ray misses the region;
+// kProfileStub: a stage's stub was reached).
+inline constexpr int kProfileStub = -2;
+struct ProfileReadings {
+    std::vector<glm::vec4> accumulated, records;
+    std::vector<double> displayed;  // records' displayed values, per sample
+    glm::vec4 result{0.0f};
+    int samples = -1;
+    double earlyTermination = 1.0;  // composite's parameter (1: none)
+    double threshold = 0.0;         // first hit's threshold or the isovalue
+    const TransferFunction* tf = nullptr;  // how one value alone is shown (else grey through the window)
+    glm::dvec2 window{0.0, 1.0};
+};
+
+// Fills `profile` (its pixel, renderer, model, step, origin and direction
+// set) from the readings.
+void fillRayProfile(RayProfile& profile, const ProfileReadings& readings);
 
 // The samples a frame of `scene` takes by the README's rule, summed over its
 // pixels: floor(length / step + 1/2) per ray over the part inside the box

@@ -37,6 +37,7 @@
 #include "voxlab/empty_space.h"
 #include "voxlab/gl_object.h"
 #include "voxlab/image.h"
+#include "voxlab/ray_profile.h"
 #include "voxlab/renderer.h"
 #include "voxlab/scene.h"
 #include "voxlab/shader.h"
@@ -140,6 +141,13 @@ public:
     // accepts (voxlab::Error otherwise); the image in the offscreen target
     // is the counts.
     double countSamples(const Scene& scene);
+    // The ray profile of pixel (px, py) of `scene` (py counted downwards),
+    // taken from this engine's own shaders, the stages of its
+    // implementation included (voxlab/ray_profile.h, voxlab/profile.glsl).
+    // Throws voxlab::Error for a pixel outside the image; a renderer that
+    // draws slices, or a volume drawn in bricks, gives a profile that says
+    // so in `why`. The offscreen image is not touched.
+    RayProfile profileRay(const Scene& scene, int px, int py);
     // Normally whether samples are counted is baked into the program, so a
     // count compiles a program of its own. With this on, u_count_samples
     // stays a uniform in unbricked renders: countSamples() after render()
@@ -311,6 +319,17 @@ private:
     SkipGrid skipGrids_[2];
     const SkipGrid* skipping_ = nullptr;
     std::size_t bricksDrawn_ = 0;  // bricked passes (bricksDrawn())
+    // The ray profile's instrumented passes (render_engine_profile.cpp):
+    // which one is being drawn (0: none), of which pixel, and its target.
+    int profilePass_ = 0;
+    glm::vec2 profilePixel_{0.0f};
+    int profileWidth_ = 1, profileFirst_ = 0;
+    FloatTarget profileTarget_;
+    glm::ivec2 profileTargetSize_{0};
+    // The scene's own renderer as a pass: with a cutting plane, clipped to
+    // the half-space the plane's normal points into (drawCut's first layer).
+    Pass scenePass(const Scene& scene) const;
+    std::vector<glm::vec4> drawProfilePass(const Scene& scene, const Pass& pass, int which, int first, int count);
     bool countingSamples_ = false;
     bool countingByUniform_ = false;
     // Precomputed textures, per transfer-function slot (the two sides of a

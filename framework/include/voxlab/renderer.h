@@ -30,10 +30,10 @@ class Volume;
 
 enum class ParameterType { Float, Int, Bool };
 
-// How the CPU ray profile (ray_profile.h) follows this renderer's rays: the
-// running maximum, minimum or mean, the first sample at or above
-// `threshold`, the first crossing of `isovalue` refined by bisection,
-// front-to-back compositing, or not at all (the samples' values only).
+// What a pixel of this renderer's rays holds after each sample, for the ray
+// profile (ray_profile.h): the running maximum, minimum or mean, a first hit
+// (at `threshold`) or a surface (at `isovalue`), front-to-back compositing,
+// or nothing it reads further (the samples' values and pixels only).
 enum class ProfileModel { None, Maximum, Minimum, Mean, FirstHit, Isosurface, Composite };
 
 // One declared parameter. The command line (--param NAME=VALUE), scene files
@@ -148,13 +148,9 @@ public:
     std::vector<ParameterSpec> parametersFor(glm::dvec2 dataRange) const;
     // The entry fragment shader, found on the shader search path.
     virtual std::string fragmentShader() const { return "renderers/" + id() + ".frag"; }
-    // The ray profile's model of this renderer's rays.
+    // How the ray profile reads the pixels of this renderer's rays
+    // (voxlab/ray_profile.h).
     virtual ProfileModel profileModel() const { return ProfileModel::None; }
-    // Clipping of a profile's ray beyond the box, the roi and the cutting
-    // plane (slab_mip: to its slab); `forward` is the camera's view
-    // direction. Returns whether any of [*t0, *t1] is left.
-    virtual bool clipProfileRay(const Volume& volume, const glm::dvec3& forward, const ParameterValues& values,
-                                const glm::dvec3& origin, const glm::dvec3& dir, double* t0, double* t1) const;
     // Shaders the renderer makes itself (name -> GLSL text), added to the
     // engine's shader library ahead of the search path: a ray-value stage's
     // entry shader, made from a template (RayValueRenderer).

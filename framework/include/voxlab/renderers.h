@@ -68,8 +68,6 @@ public:
     std::string description() const override;
     std::vector<ParameterSpec> parameters() const override;
     ProfileModel profileModel() const override { return ProfileModel::Maximum; }
-    bool clipProfileRay(const Volume& volume, const glm::dvec3& forward, const ParameterValues& values,
-                        const glm::dvec3& origin, const glm::dvec3& dir, double* t0, double* t1) const override;
 };
 
 class CompositeRenderer final : public Renderer {
@@ -113,6 +111,7 @@ public:
     bool needsTransferFunction2D() const override { return true; }
     bool usesTransferFunction() const override { return false; }
     EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
+    ProfileModel profileModel() const override { return ProfileModel::Composite; }
 };
 
 // Object-order renderers: they draw proxy geometry (draw()) instead of

@@ -246,6 +246,18 @@ PreprocessedShader compiledOnceOnLlvmpipe(PreprocessedShader fs) {
     return fs;
 }
 
+// The ray profile's record pass (u_profile = 2, voxlab/profile.glsl): the
+// entry shader's main() runs as written, then the colour it wrote gives way
+// to what the ray library recorded of this fragment's sample. Every entry
+// shader of a ray caster writes `frag_color`.
+PreprocessedShader withProfileRecord(PreprocessedShader fs) {
+    const std::size_t firstLine = fs.text.find('\n');
+    if (firstLine == std::string::npos || !declaresMain(fs.text)) return fs;
+    fs.text.insert(firstLine + 1, "#define main voxlab_entry_main\n");
+    fs.text += "\n#undef main\nvoid main() {\n    voxlab_entry_main();\n    frag_color = voxlab_profile_record();\n}\n";
+    return fs;
+}
+
 }  // namespace
 
 namespace {
@@ -409,9 +421,13 @@ ShaderProgram::ShaderProgram(const ShaderLibrary& library, const std::string& ve
     const GLuint v = compileStage(GL_VERTEX_SHADER, vs);
     GLuint f = 0;
     try {
-        f = compileStage(GL_FRAGMENT_SHADER, library.compileOnce() && currentGlRenderer().find("llvmpipe") != std::string::npos
-                                                ? compiledOnceOnLlvmpipe(fs)
-                                                : fs);
+        const auto profile = constants.find("u_profile");
+        if (profile != constants.end() && profile->second == 2)
+            f = compileStage(GL_FRAGMENT_SHADER, withProfileRecord(fs));
+        else if (library.compileOnce() && currentGlRenderer().find("llvmpipe") != std::string::npos)
+            f = compileStage(GL_FRAGMENT_SHADER, compiledOnceOnLlvmpipe(fs));
+        else
+            f = compileStage(GL_FRAGMENT_SHADER, fs);
     } catch (...) {
         glDeleteShader(v);
         throw;

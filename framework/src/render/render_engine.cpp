@@ -254,6 +254,11 @@ void RenderEngine::setSceneUniforms(const ShaderProgram& prog, const Scene& scen
     prog.set("u_pixel_scale", float(cam.pixelScale));
     prog.set("u_image_size", glm::vec2(scene.width, scene.height));
     prog.set("u_orthographic", cam.projection == Projection::Orthographic ? 1 : 0);
+    if (profilePass_ != 0) {  // the ray profile's run (render_engine_profile.cpp)
+        prog.set("u_profile_pixel", profilePixel_);
+        prog.set("u_profile_width", profileWidth_);
+        prog.set("u_profile_first", profileFirst_);
+    }
 
     prog.set("u_step", float(scene.step * vol.minSpacing()));
     prog.set("u_step_units", float(scene.step));
@@ -330,7 +335,8 @@ ShaderConstants RenderEngine::switchesFor(const Scene& scene, const Pass& pass, 
                                  {"u_clip_plane_count", int(std::min(scene.clipPlanes.size(), kMaxClipPlanes))},
                                  {"u_skipping", skipping ? 1 : 0},
                                  {"u_bricked", combine != BrickCombine::None ? 1 : 0},
-                                 {"u_brick_combine", int(combine)}};
+                                 {"u_brick_combine", int(combine)},
+                                 {"u_profile", profilePass_}};
     // Counting stays a uniform when asked (setCountingByUniform), except in
     // a bricked render, whose counting draws use programs of their own.
     if (!countingByUniform_ || combine != BrickCombine::None)
@@ -511,21 +517,29 @@ unsigned RenderEngine::sliceStack(int axis) {
     return sliceStacks_[axis];
 }
 
+RenderEngine::Pass RenderEngine::scenePass(const Scene& scene) const {
+    Pass pass;
+    pass.renderer = &rendererRegistry().get(scene.renderer);
+    pass.values = pass.renderer->resolveParameters(scene.parameters, volume_->valueRange());
+    pass.transferFunction = scene.transferFunction ? &*scene.transferFunction : nullptr;
+    if (scene.cuttingPlane) {
+        const CuttingPlane& cut = *scene.cuttingPlane;
+        pass.clip = true;
+        pass.clipPoint = glm::vec3(cut.point.value_or(glm::dvec3(volume_->dims()) * 0.5) * volume_->spacing());
+        pass.clipNormal = glm::vec3(glm::normalize(cut.normal));
+    }
+    return pass;
+}
+
 void RenderEngine::drawCut(const Scene& scene, unsigned framebuffer) {
     const CuttingPlane& cut = *scene.cuttingPlane;
-    const Volume& vol = *volume_;
-    const glm::dvec2 range = vol.valueRange();
-    const glm::vec3 point(cut.point.value_or(glm::dvec3(vol.dims()) * 0.5) * vol.spacing());
-    const glm::vec3 normal(glm::normalize(cut.normal));
+    const glm::dvec2 range = volume_->valueRange();
     ensureLayers(scene.width, scene.height);
     glViewport(0, 0, scene.width, scene.height);
 
-    Pass positive;
-    positive.renderer = &rendererRegistry().get(scene.renderer);
-    positive.values = positive.renderer->resolveParameters(scene.parameters, range);
-    positive.transferFunction = scene.transferFunction ? &*scene.transferFunction : nullptr;
-    positive.layer = positive.clip = true;
-    positive.clipPoint = point, positive.clipNormal = normal;
+    Pass positive = scenePass(scene);
+    positive.layer = true;
+    const glm::vec3 point = positive.clipPoint, normal = positive.clipNormal;
     glBindFramebuffer(GL_FRAMEBUFFER, layers_[0].framebuffer);
     draw(scene, positive);
 
@@ -568,10 +582,7 @@ void RenderEngine::renderTo(const Scene& scene, unsigned framebuffer) {
         drawCut(scene, framebuffer);
         return;
     }
-    Pass pass;
-    pass.renderer = &rendererRegistry().get(scene.renderer);
-    pass.values = pass.renderer->resolveParameters(scene.parameters, volume_->valueRange());
-    pass.transferFunction = scene.transferFunction ? &*scene.transferFunction : nullptr;
+    const Pass pass = scenePass(scene);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, scene.width, scene.height);
     draw(scene, pass);

@@ -114,9 +114,4 @@ const Renderer& RendererRegistry::get(const std::string& id) const {
     throw Error("unknown renderer '" + id + "' (available: " + names + ")");
 }
 
-bool Renderer::clipProfileRay(const Volume&, const glm::dvec3&, const ParameterValues&, const glm::dvec3&,
-                              const glm::dvec3&, double* t0, double* t1) const {
-    return *t1 > *t0;
-}
-
 }  // namespace voxlab

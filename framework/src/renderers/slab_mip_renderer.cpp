@@ -20,15 +20,4 @@ std::vector<ParameterSpec> SlabMipRenderer::parameters() const {
              "thickness of the slab, in units of the smallest voxel spacing"}};
 }
 
-// The slab: |dot(p - c, forward)| <= thickness/2 around the box centre moved
-// by `offset` along the view (both in smallest spacings), as slab_mip.frag
-// asks clip_to_slab() to do.
-bool SlabMipRenderer::clipProfileRay(const Volume& volume, const glm::dvec3& forward, const ParameterValues& values,
-                                     const glm::dvec3& origin, const glm::dvec3& dir, double* t0, double* t1) const {
-    const glm::dvec3 centre = 0.5 * volume.extent() + values.at("offset") * volume.minSpacing() * forward;
-    const double h = 0.5 * values.at("thickness") * volume.minSpacing();
-    return clipToHalfSpace(origin, dir, centre - h * forward, forward, t0, t1) &&
-           clipToHalfSpace(origin, dir, centre + h * forward, -forward, t0, t1);
-}
-
 }  // namespace voxlab

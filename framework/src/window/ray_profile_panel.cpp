@@ -434,7 +434,10 @@ void ProfileCanvas::hoverSample() const {
     ImGui::Text("sample %d%s", m, profile.stoppedAt >= 0 && m > profile.stoppedAt ? "  (after the stop)" : "");
     ImGui::Text("t %.4g   at (%.4g, %.4g, %.4g)", s.t, s.position.x, s.position.y, s.position.z);
     ImGui::Text("value %.5g", s.value);
-    ImGui::TextDisabled("running max %.5g  min %.5g  mean %.5g", s.runningMax, s.runningMin, s.runningMean);
+    // The running value the renderer displays (its own, read from its shader).
+    if (profile.model == ProfileModel::Maximum) ImGui::TextDisabled("running max %.5g", s.runningMax);
+    if (profile.model == ProfileModel::Minimum) ImGui::TextDisabled("running min %.5g", s.runningMin);
+    if (profile.model == ProfileModel::Mean) ImGui::TextDisabled("running mean %.5g", s.runningMean);
     if (profile.modelled && profile.model != ProfileModel::Isosurface) {
         const glm::vec4& c = s.classified;
         const glm::vec4& a = s.accumulated;

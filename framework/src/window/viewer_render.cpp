@@ -361,7 +361,10 @@ void pickRayProfile(State& s, glm::ivec2 pixel) {
     scene.width = s.fbWidth, scene.height = s.fbHeight;
     const bool right = s.split == SplitMode::Split && pixel.x >= s.divider * s.fbWidth;
     if (right && !s.other.renderer.empty()) scene.renderer = s.other.renderer, scene.parameters.clear();
-    s.profile = computeRayProfile(*s.volume, scene, pixel.x, pixel.y);
+    // The side's own engine: its implementation's stages are the ones the
+    // profile shows (the student's on the left, the other side's on the right).
+    RenderEngine& engine = right && s.other.engine ? *s.other.engine : *s.main.engine;
+    s.profile = engine.profileRay(scene, pixel.x, pixel.y);
     s.profilePixel = pixel;
     s.profileCamera = s.scene.camera;
     s.showProfile = true;

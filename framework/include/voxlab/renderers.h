@@ -34,11 +34,19 @@ public:
 // its parameters become uniforms u_NAME; so adding such a stage takes its
 // folder and one line in renderer_registry.cpp, e.g.
 //   r.add<RayValueRenderer>("minip", "minimum intensity projection: ...", ProfileModel::Minimum);
+// What a ray-value stage's function returns: one value, in data units,
+// shown through the window or the transfer function (float STAGE_ray(Ray));
+// or a colour, premultiplied, with its opacity (vec4 STAGE_ray(Ray)), which
+// classifies with the transfer function (a grey ramp when the scene has
+// none).
+enum class RayResult { Value, Colour };
+
 class RayValueRenderer final : public Renderer {
 public:
     BrickCombine brickCombine(const ParameterValues& values) const override;
     RayValueRenderer(std::string stage, std::string description, ProfileModel profile = ProfileModel::None,
-                     std::vector<ParameterSpec> parameters = {});
+                     std::vector<ParameterSpec> parameters = {}, RayResult result = RayResult::Value);
+    bool needsTransferFunction() const override { return result_ == RayResult::Colour; }
     std::string id() const override { return stage_; }
     std::string description() const override { return description_; }
     std::vector<ParameterSpec> parameters() const override { return parameters_; }
@@ -49,6 +57,7 @@ private:
     std::string stage_, description_;
     ProfileModel profile_;
     std::vector<ParameterSpec> parameters_;
+    RayResult result_;
 };
 
 class FirstHitRenderer final : public Renderer {

@@ -27,6 +27,7 @@ const RendererRegistry& rendererRegistry() {
                                                             "depth cue: dimming per unit length (smallest spacing) "
                                                             "behind where the ray enters; 0 turns it off"}});
         r.add<CompositeRenderer>();
+        r.add<RayValueRenderer>("mida", "maximum intensity difference accumulation: compositing where a new maximum pushes back what lies in front, between compositing (gamma -1) and MIP (gamma 1)", ProfileModel::None, std::vector<ParameterSpec>{{"gamma", ParameterType::Float, -1.0, 1.0, 0.0, "-1: compositing, 0: MIDA, 1: MIP"}}, RayResult::Colour);
         r.add<IsoRenderer>();
         r.add<MeshRenderer>();
         r.add<Tf2dRenderer>();

@@ -479,6 +479,81 @@ std::string ChildResult::describe(double limitSeconds) const {
     return "ok";
 }
 
+namespace {
+
+// The parent's ends of a started child's pipes, and its pidfd (-1: none).
+struct ChildPipes {
+    int out = -1, results = -1, exited = -1;
+};
+
+// Reads the status messages, 5 bytes each (written at once, so never
+// split): the worker's pid from the keeper ('P') and the layers in force
+// ('L'). Returns the worker's pid (the child itself when not isolated).
+pid_t readStatus(int fd, pid_t pid, const ChildLimits& limits, ChildResult& result) {
+    pid_t workerPid = limits.isolate ? 0 : pid;
+    for (int i = 0; i < (limits.isolate ? 2 : 1); ++i) {
+        unsigned char message[5];
+        if (read(fd, message, sizeof message) != sizeof message) break;
+        if (message[0] == 'P') std::memcpy(&workerPid, message + 1, 4);
+        if (message[0] != 'L') continue;
+        unsigned layers = 0;
+        std::memcpy(&layers, message + 1, 4);
+        result.sandboxed = layers & sandbox::kLandlockWrites;
+        result.sandbox = layerNames(layers);
+        if (limits.isolate) result.sandboxMissing = missingNames(layers, !limits.scratch.empty());
+    }
+    return workerPid;
+}
+
+// Collects the child's output and results until it has exited and its
+// pipes are closed; past the deadline the worker, the child's process group
+// and the cgroup are killed. Returns the wait status.
+int superviseChild(pid_t pid, pid_t workerPid, const ChildPipes& pipes, const ChildLimits& limits,
+                   const ChildCgroup* cgroup, std::chrono::steady_clock::time_point start, ChildResult& result) {
+    const auto deadline = start + std::chrono::duration<double>(limits.seconds);
+    bool outOpen = true, resultsOpen = pipes.results >= 0, exited = false;
+    int waitStatus = 0;
+    auto exitedAt = std::chrono::steady_clock::now();
+    while (!exited || outOpen || resultsOpen) {
+        const auto now = std::chrono::steady_clock::now();
+        const double left = std::chrono::duration<double>(deadline - now).count();
+        if (left <= 0.0 && !exited) {
+            result.timedOut = true;
+            if (workerPid > 0) kill(workerPid, SIGKILL);
+            kill(-pid, SIGKILL);
+            if (cgroup) cgroup->killAll();
+            waitpid(pid, &waitStatus, 0);
+            exited = true;
+            exitedAt = now;
+        }
+        // Descendants of a non-isolated child may hold the pipes open.
+        if (exited && std::chrono::duration<double>(now - exitedAt).count() > 1.0) break;
+        // The child's pidfd wakes the poll when it exits; without one (a
+        // kernel before 5.3), a short wait once the pipes are closed.
+        struct pollfd fds[3] = {{outOpen ? pipes.out : -1, POLLIN, 0},
+                                {resultsOpen ? pipes.results : -1, POLLIN, 0},
+                                {exited ? -1 : pipes.exited, POLLIN, 0}};
+        const double wait = pipes.exited < 0 && !outOpen && !resultsOpen ? 0.005 : 0.1;
+        if (poll(fds, 3, int(std::clamp(left, 0.0, wait) * 1000.0) + 1) > 0) {
+            if (fds[0].revents) outOpen = drain(pipes.out, result.output, limits.outputBytes, nullptr);
+            if (fds[1].revents)
+                resultsOpen = drain(pipes.results, result.results, limits.resultsBytes, &result.resultsTruncated);
+        }
+        if (!exited && waitpid(pid, &waitStatus, WNOHANG) == pid) {
+            exited = true;
+            exitedAt = std::chrono::steady_clock::now();
+            // The worker is gone, and with it its namespace; a non-isolated
+            // child's leftovers go with its process group, and whatever
+            // detached itself without a namespace with the cgroup.
+            kill(-pid, SIGKILL);
+            if (cgroup) cgroup->killAll();
+        }
+    }
+    return waitStatus;
+}
+
+}  // namespace
+
 ChildResult runChild(const std::vector<std::string>& argv, const ChildLimits& limits) {
     if (argv.empty()) throw Error("runChild: no program given");
     // The child's cgroup: the caller's, shared with children before it, or
@@ -507,69 +582,17 @@ ChildResult runChild(const std::vector<std::string>& argv, const ChildLimits& li
     if (!limits.isolate) setpgid(pid, pid);  // also here, so that a kill cannot race the child's own call
     // Readable when the child exits. It is this process's child, so the pid
     // cannot be reused before it is waited for.
-    const int exitFd = int(syscall(SYS_pidfd_open, pid, 0));
+    const ChildPipes pipes{out[0], results[0], int(syscall(SYS_pidfd_open, pid, 0))};
     close(out[1]);
     close(status[1]);
     if (results[1] >= 0) close(results[1]);
     ChildResult result;
-    // Status messages, 5 bytes each (written at once, so never split): the
-    // worker's pid from the keeper ('P'), the layers in force ('L').
-    pid_t workerPid = limits.isolate ? 0 : pid;
-    for (int i = 0; i < (limits.isolate ? 2 : 1); ++i) {
-        unsigned char message[5];
-        if (read(status[0], message, sizeof message) != sizeof message) break;
-        if (message[0] == 'P') std::memcpy(&workerPid, message + 1, 4);
-        if (message[0] != 'L') continue;
-        unsigned layers = 0;
-        std::memcpy(&layers, message + 1, 4);
-        result.sandboxed = layers & sandbox::kLandlockWrites;
-        result.sandbox = layerNames(layers);
-        if (limits.isolate) result.sandboxMissing = missingNames(layers, !limits.scratch.empty());
-    }
+    const pid_t workerPid = readStatus(status[0], pid, limits, result);
     close(status[0]);
-
-    const auto deadline = start + std::chrono::duration<double>(limits.seconds);
-    bool outOpen = true, resultsOpen = results[0] >= 0, exited = false;
-    int waitStatus = 0;
-    auto exitedAt = std::chrono::steady_clock::now();
-    while (!exited || outOpen || resultsOpen) {
-        const auto now = std::chrono::steady_clock::now();
-        const double left = std::chrono::duration<double>(deadline - now).count();
-        if (left <= 0.0 && !exited) {
-            result.timedOut = true;
-            if (workerPid > 0) kill(workerPid, SIGKILL);
-            kill(-pid, SIGKILL);
-            if (cgroup) cgroup->killAll();
-            waitpid(pid, &waitStatus, 0);
-            exited = true;
-            exitedAt = now;
-        }
-        // Descendants of a non-isolated child may hold the pipes open.
-        if (exited && std::chrono::duration<double>(now - exitedAt).count() > 1.0) break;
-        // The child's pidfd wakes the poll when it exits; without one (a
-        // kernel before 5.3), a short wait once the pipes are closed.
-        struct pollfd fds[3] = {{outOpen ? out[0] : -1, POLLIN, 0},
-                                {resultsOpen ? results[0] : -1, POLLIN, 0},
-                                {exited ? -1 : exitFd, POLLIN, 0}};
-        const double wait = exitFd < 0 && !outOpen && !resultsOpen ? 0.005 : 0.1;
-        if (poll(fds, 3, int(std::clamp(left, 0.0, wait) * 1000.0) + 1) > 0) {
-            if (fds[0].revents) outOpen = drain(out[0], result.output, limits.outputBytes, nullptr);
-            if (fds[1].revents)
-                resultsOpen = drain(results[0], result.results, limits.resultsBytes, &result.resultsTruncated);
-        }
-        if (!exited && waitpid(pid, &waitStatus, WNOHANG) == pid) {
-            exited = true;
-            exitedAt = std::chrono::steady_clock::now();
-            // The worker is gone, and with it its namespace; a non-isolated
-            // child's leftovers go with its process group, and whatever
-            // detached itself without a namespace with the cgroup.
-            kill(-pid, SIGKILL);
-            if (cgroup) cgroup->killAll();
-        }
-    }
-    close(out[0]);
-    if (results[0] >= 0) close(results[0]);
-    if (exitFd >= 0) close(exitFd);
+    const int waitStatus = superviseChild(pid, workerPid, pipes, limits, cgroup, start, result);
+    close(pipes.out);
+    if (pipes.results >= 0) close(pipes.results);
+    if (pipes.exited >= 0) close(pipes.exited);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!result.timedOut) {
         if (WIFEXITED(waitStatus)) result.exitCode = WEXITSTATUS(waitStatus);

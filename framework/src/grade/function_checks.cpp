@@ -115,6 +115,46 @@ json callStage(const std::function<json()>& call) {
 // ---------------------------------------------------------------------------
 // phong_random (stage shading)
 
+// The normal, light and view of case `kind` of the Phong check: where the
+// light reaches the surface (n.l > 0), where it does not (n.l < 0: no
+// highlight even with the viewer at the mirror direction), grazing exactly
+// (n.l = 0 in float), and views near the mirror direction
+// r = 2 (n.l) n - l, where the highlight is.
+void phongDirections(CheckRandom& rng, int kind, glm::dvec3& n, glm::dvec3& l, glm::dvec3& v) {
+    for (;;) {
+        n = unitF32(rng.unitVector());
+        l = unitF32(rng.unitVector());
+        if (kind == 3) {
+            // n along an axis and l across it: n.l is exactly 0.
+            const int axis = rng.index(3);
+            n = glm::dvec3(0.0);
+            n[axis] = rng.index(2) ? 1.0 : -1.0;
+            l[axis] = 0.0;
+            l = unitF32(l);
+            l[axis] = 0.0;
+        } else if (kind != 4) {
+            const double nl = glm::dot(n, l);
+            if (std::abs(nl) < 0.05) continue;
+            if ((kind == 2) != (nl < 0.0)) l = -l;
+        }
+        const glm::dvec3 mirror = 2.0 * glm::dot(n, l) * n - l;
+        if (kind == 0) {
+            v = rng.unitVector();
+            if (glm::dot(v, n) < 0.0) v = -v;
+        } else if (kind == 4) {
+            v = rng.unitVector();
+        } else {
+            const double spread = rng.range(0.0, 0.35);
+            v = mirror + spread * rng.unitVector();
+        }
+        if (glm::length(v) < 0.1) continue;
+        v = unitF32(v);
+        if (kind != 3 && std::abs(glm::dot(n, l)) < 1e-3) continue;
+        if (glm::length(l + v) < 0.1) continue;  // Blinn's half vector would be undefined
+        break;
+    }
+}
+
 json runPhong(const std::string& root) {
     struct Coefficients {
         double ka, kd, ks, shininess;
@@ -135,43 +175,7 @@ json runPhong(const std::string& root) {
         c.shininess = f32(1.0 + 127.0 * u * u);  // 1 to 128, more often low
         const glm::dvec3 colour = f32(rng.inBox(glm::dvec3(0.1), glm::dvec3(1.0)));
         glm::dvec3 n, l, v;
-        // Where the light reaches the surface (n.l > 0), where it does not
-        // (n.l < 0: no highlight even with the viewer at the mirror
-        // direction), grazing exactly (n.l = 0 in float), and views near the
-        // mirror direction r = 2 (n.l) n - l, where the highlight is.
-        const int kind = (i / 2) % 5;
-        for (;;) {
-            n = unitF32(rng.unitVector());
-            l = unitF32(rng.unitVector());
-            if (kind == 3) {
-                // n along an axis and l across it: n.l is exactly 0.
-                const int axis = rng.index(3);
-                n = glm::dvec3(0.0);
-                n[axis] = rng.index(2) ? 1.0 : -1.0;
-                l[axis] = 0.0;
-                l = unitF32(l);
-                l[axis] = 0.0;
-            } else if (kind != 4) {
-                const double nl = glm::dot(n, l);
-                if (std::abs(nl) < 0.05) continue;
-                if ((kind == 2) != (nl < 0.0)) l = -l;
-            }
-            const glm::dvec3 mirror = 2.0 * glm::dot(n, l) * n - l;
-            if (kind == 0) {
-                v = rng.unitVector();
-                if (glm::dot(v, n) < 0.0) v = -v;
-            } else if (kind == 4) {
-                v = rng.unitVector();
-            } else {
-                const double spread = rng.range(0.0, 0.35);
-                v = mirror + spread * rng.unitVector();
-            }
-            if (glm::length(v) < 0.1) continue;
-            v = unitF32(v);
-            if (kind != 3 && std::abs(glm::dot(n, l)) < 1e-3) continue;
-            if (glm::length(l + v) < 0.1) continue;  // Blinn's half vector would be undefined
-            break;
-        }
+        phongDirections(rng, (i / 2) % 5, n, l, v);
         colours.push_back(texel(colour));
         normals.push_back(texel(n));
         lights.push_back(texel(l));
@@ -469,69 +473,79 @@ json widgetJson(const Tf2dProbeWidget& w) {
             {"color", vecJson(w.colour)}};
 }
 
+// A random set of one to four widgets for the tf2d check.
+std::vector<Tf2dProbeWidget> randomTf2dWidgets(CheckRandom& rng) {
+    std::vector<Tf2dProbeWidget> widgets(std::size_t(1 + rng.index(4)));
+    for (Tf2dProbeWidget& w : widgets) {
+        w.box = rng.index(2) == 1;
+        if (w.box) {
+            const double v0 = f32(rng.range(0.0, 80.0)), g0 = rng.index(3) == 0 ? 0.0 : f32(rng.range(0.0, 10.0));
+            w.shape = {v0, f32(v0 + rng.range(5.0, 40.0)), g0, f32(g0 + rng.range(2.0, 15.0))};
+        } else {
+            w.shape = {f32(rng.range(10.0, 90.0)), f32(rng.range(0.5, 3.0)), 0.0, 0.0};
+        }
+        w.colour = f32(rng.inBox(glm::dvec3(0.0), glm::dvec3(1.0)));
+        w.alpha = rng.index(8) == 0 ? 1.0 : f32(rng.range(0.1, 1.0));
+    }
+    return widgets;
+}
+
+// A (value, gradient) point for case `kind` of the tf2d check. Kinds: 0
+// anywhere; 1, 4 inside a chosen widget; 2 on the value axis (g = 0), at a
+// triangle's apex or not; 3 exactly on a box's edge.
+glm::vec4 tf2dPoint(CheckRandom& rng, const std::vector<Tf2dProbeWidget>& widgets, int kind) {
+    std::size_t pick = std::size_t(rng.index(int(widgets.size())));
+    if (kind == 2)  // at an apex: prefer a triangle
+        for (std::size_t k = 0; k < widgets.size(); ++k)
+            if (!widgets[k].box) pick = k;
+    const Tf2dProbeWidget& chosen = widgets[pick];
+    double f = 0.0, g = 0.0;
+    for (int attempt = 0;; ++attempt) {
+        f = f32(rng.range(0.0, 100.0));
+        g = f32(rng.range(0.0, 25.0));
+        const glm::dvec4 s = chosen.shape;
+        if (kind == 1 || kind == 4) {
+            if (chosen.box) {
+                f = f32(rng.range(s.x, s.y));
+                g = f32(rng.range(s.z, s.w));
+            } else {
+                g = f32(rng.range(0.5, 20.0));
+                f = f32(s.x + rng.range(-1.0, 1.0) * s.y * g);
+            }
+        } else if (kind == 2) {
+            g = 0.0;
+            if (!chosen.box && rng.index(2) == 0) f = s.x;
+        } else if (kind == 3 && chosen.box) {
+            const int edge = rng.index(4);
+            if (edge < 2) {
+                f = edge == 0 ? s.x : s.y;
+                g = f32(rng.range(s.z, s.w));
+            } else {
+                f = f32(rng.range(s.x, s.y));
+                g = edge == 2 ? s.z : s.w;
+            }
+        }
+        // Keep off the boxes' edges, where the opacity jumps, unless
+        // exactly on one.
+        auto near = [](double x, double edge) { return x != edge && std::abs(x - edge) < 1e-3; };
+        bool nearEdge = false;
+        for (const Tf2dProbeWidget& w : widgets)
+            if (w.box)
+                nearEdge = nearEdge || near(f, w.shape.x) || near(f, w.shape.y) || near(g, w.shape.z) ||
+                           near(g, w.shape.w);
+        if (!nearEdge || attempt > 100) break;
+    }
+    return glm::vec4(float(f), float(g), 0.0f, 0.0f);
+}
+
 json runTf2d(const std::string& root) {
     CheckRandom rng(0x5EED0005u);
     std::vector<std::vector<Tf2dProbeWidget>> widgetSets;
     std::vector<glm::vec4> points;
     for (int i = 0; i < kCases; ++i) {
-        std::vector<Tf2dProbeWidget> widgets(std::size_t(1 + rng.index(4)));
-        for (Tf2dProbeWidget& w : widgets) {
-            w.box = rng.index(2) == 1;
-            if (w.box) {
-                const double v0 = f32(rng.range(0.0, 80.0)), g0 = rng.index(3) == 0 ? 0.0 : f32(rng.range(0.0, 10.0));
-                w.shape = {v0, f32(v0 + rng.range(5.0, 40.0)), g0, f32(g0 + rng.range(2.0, 15.0))};
-            } else {
-                w.shape = {f32(rng.range(10.0, 90.0)), f32(rng.range(0.5, 3.0)), 0.0, 0.0};
-            }
-            w.colour = f32(rng.inBox(glm::dvec3(0.0), glm::dvec3(1.0)));
-            w.alpha = rng.index(8) == 0 ? 1.0 : f32(rng.range(0.1, 1.0));
-        }
-        // Kinds: 0 anywhere; 1, 4 inside a chosen widget; 2 on the value
-        // axis (g = 0), at a triangle's apex or not; 3 exactly on a box's edge.
-        const int kind = i % 5;
-        std::size_t pick = std::size_t(rng.index(int(widgets.size())));
-        if (kind == 2)  // at an apex: prefer a triangle
-            for (std::size_t k = 0; k < widgets.size(); ++k)
-                if (!widgets[k].box) pick = k;
-        const Tf2dProbeWidget& chosen = widgets[pick];
-        double f = 0.0, g = 0.0;
-        for (int attempt = 0;; ++attempt) {
-            f = f32(rng.range(0.0, 100.0));
-            g = f32(rng.range(0.0, 25.0));
-            const glm::dvec4 s = chosen.shape;
-            if (kind == 1 || kind == 4) {
-                if (chosen.box) {
-                    f = f32(rng.range(s.x, s.y));
-                    g = f32(rng.range(s.z, s.w));
-                } else {
-                    g = f32(rng.range(0.5, 20.0));
-                    f = f32(s.x + rng.range(-1.0, 1.0) * s.y * g);
-                }
-            } else if (kind == 2) {
-                g = 0.0;
-                if (!chosen.box && rng.index(2) == 0) f = s.x;
-            } else if (kind == 3 && chosen.box) {
-                const int edge = rng.index(4);
-                if (edge < 2) {
-                    f = edge == 0 ? s.x : s.y;
-                    g = f32(rng.range(s.z, s.w));
-                } else {
-                    f = f32(rng.range(s.x, s.y));
-                    g = edge == 2 ? s.z : s.w;
-                }
-            }
-            // Keep off the boxes' edges, where the opacity jumps, unless
-            // exactly on one.
-            auto near = [](double x, double edge) { return x != edge && std::abs(x - edge) < 1e-3; };
-            bool nearEdge = false;
-            for (const Tf2dProbeWidget& w : widgets)
-                if (w.box)
-                    nearEdge = nearEdge || near(f, w.shape.x) || near(f, w.shape.y) || near(g, w.shape.z) ||
-                               near(g, w.shape.w);
-            if (!nearEdge || attempt > 100) break;
-        }
+        std::vector<Tf2dProbeWidget> widgets = randomTf2dWidgets(rng);
+        points.push_back(tf2dPoint(rng, widgets, i % 5));
         widgetSets.push_back(std::move(widgets));
-        points.push_back(glm::vec4(float(f), float(g), 0.0f, 0.0f));
     }
     GlslProbe probe(root, "probes/tf2d_probe.frag");
     const probe::ProbeResults results = probe.run(kCases, {points}, [&](const ShaderProgram& program, int i) {
@@ -749,6 +763,62 @@ json runSliceAxis(const std::string& root) {
 // ---------------------------------------------------------------------------
 // plane_box_random (stage texslice3d)
 
+// A grid point: v rounded to a multiple of `step` (see runPlaneBox).
+glm::dvec3 onGrid(glm::dvec3 v, double step) { return glm::round(v / step) * step; }
+
+// The plane (normal, offset: dot(n, p) = offset) of case `kind` of the
+// plane-box check, for the box [lo, hi]; case `i` 5 gets a zero normal.
+void randomPlane(CheckRandom& rng, int kind, int i, glm::dvec3 lo, glm::dvec3 hi, glm::dvec3& normal,
+                 double& offset) {
+    const double diagonal = glm::length(hi - lo);
+    auto boxCorner = [&](int bits) {  // bit k set: the high side on axis k
+        return glm::dvec3(bits & 1 ? hi.x : lo.x, bits & 2 ? hi.y : lo.y, bits & 4 ? hi.z : lo.z);
+    };
+    auto randomNormal = [&]() {
+        for (;;) {
+            const glm::dvec3 n = onGrid(rng.unitVector(), 1.0 / 256.0);
+            if (n != glm::dvec3(0.0)) return n;
+        }
+    };
+    // Whether every corner keeps a distance from the plane (random
+    // planes must not pass "almost" through a corner).
+    auto clearOfCorners = [&](glm::dvec3 n, double d) {
+        for (int c = 0; c < 8; ++c)
+            if (std::abs(glm::dot(n, boxCorner(c)) - d) < 1e-4 * diagonal * glm::length(n)) return false;
+        return true;
+    };
+    for (;;) {
+        normal = randomNormal();
+        if (kind == 0) {  // through a random point of the box
+            offset = glm::dot(normal, onGrid(rng.inBox(lo, hi), 1.0 / 1024.0));
+        } else if (kind == 1) {  // parallel to a face: inside, or containing the face
+            const int axis = rng.index(3), where = rng.index(3);
+            normal = glm::dvec3(0.0);
+            normal[axis] = rng.index(2) ? 1.0 : -1.0;
+            const double at = where == 0 ? lo[axis] : where == 1 ? hi[axis]
+                                                                  : onGrid(rng.inBox(lo, hi), 1.0 / 64.0)[axis];
+            offset = normal[axis] * at;
+            return;
+        } else if (kind == 2) {  // through a corner: cutting the box there, or only touching it
+            offset = glm::dot(normal, boxCorner(rng.index(8)));
+            return;
+        } else if (kind == 3) {  // containing an edge: through the box, or only touching it
+            const int axis = rng.index(3);
+            normal[axis] = 0.0;
+            if (normal == glm::dvec3(0.0)) continue;
+            offset = glm::dot(normal, boxCorner(rng.index(8)));
+            return;
+        } else if (kind == 4) {  // anywhere near the box, possibly missing it
+            offset = glm::dot(normal, onGrid(rng.inBox(lo - 0.5 * (hi - lo), hi + 0.5 * (hi - lo)), 1.0 / 1024.0));
+        } else {  // through the centre; once a zero normal
+            if (i == 5) normal = glm::dvec3(0.0);
+            offset = glm::dot(normal, 0.5 * (lo + hi));
+            return;
+        }
+        if (clearOfCorners(normal, offset)) return;
+    }
+}
+
 json runPlaneBox(const std::string&) {
     CheckRandom rng(0x5EED0007u);
     json check = checkJson("plane_box_random", "texslice3d", rng.seed());
@@ -756,63 +826,15 @@ json runPlaneBox(const std::string&) {
     // grid of 1/1024, scaled by powers of two: then every offset dot(n, p)
     // is exact in double, and a plane put through a corner or an edge
     // really passes through it.
-    auto grid = [](glm::dvec3 v, double step) { return glm::round(v / step) * step; };
     for (int i = 0; i < kCases; ++i) {
         // One box in ten far from the origin (2^20 away: the handout's
         // "absolute epsilons" pitfall); still exact on the grids.
         const glm::dvec3 far = i % 10 == 9 ? glm::dvec3(std::ldexp(rng.index(2) ? 1.0 : -1.0, 20)) : glm::dvec3(0.0);
-        const glm::dvec3 lo = far + grid(rng.inBox(glm::dvec3(-2.0), glm::dvec3(2.0)), 1.0 / 64.0);
-        const glm::dvec3 hi = lo + grid(rng.inBox(glm::dvec3(0.25), glm::dvec3(3.0)), 1.0 / 64.0);
-        const double diagonal = glm::length(hi - lo);
-        auto boxCorner = [&](int bits) {  // bit k set: the high side on axis k
-            return glm::dvec3(bits & 1 ? hi.x : lo.x, bits & 2 ? hi.y : lo.y, bits & 4 ? hi.z : lo.z);
-        };
-        auto randomNormal = [&]() {
-            for (;;) {
-                const glm::dvec3 n = grid(rng.unitVector(), 1.0 / 256.0);
-                if (n != glm::dvec3(0.0)) return n;
-            }
-        };
-        // Whether every corner keeps a distance from the plane (random
-        // planes must not pass "almost" through a corner).
-        auto clearOfCorners = [&](glm::dvec3 n, double d) {
-            for (int c = 0; c < 8; ++c)
-                if (std::abs(glm::dot(n, boxCorner(c)) - d) < 1e-4 * diagonal * glm::length(n)) return false;
-            return true;
-        };
+        const glm::dvec3 lo = far + onGrid(rng.inBox(glm::dvec3(-2.0), glm::dvec3(2.0)), 1.0 / 64.0);
+        const glm::dvec3 hi = lo + onGrid(rng.inBox(glm::dvec3(0.25), glm::dvec3(3.0)), 1.0 / 64.0);
         glm::dvec3 normal;
         double offset = 0.0;
-        const int kind = i % 6;
-        for (;;) {
-            normal = randomNormal();
-            if (kind == 0) {  // through a random point of the box
-                offset = glm::dot(normal, grid(rng.inBox(lo, hi), 1.0 / 1024.0));
-            } else if (kind == 1) {  // parallel to a face: inside, or containing the face
-                const int axis = rng.index(3), where = rng.index(3);
-                normal = glm::dvec3(0.0);
-                normal[axis] = rng.index(2) ? 1.0 : -1.0;
-                const double at = where == 0 ? lo[axis] : where == 1 ? hi[axis]
-                                                                      : grid(rng.inBox(lo, hi), 1.0 / 64.0)[axis];
-                offset = normal[axis] * at;
-                break;
-            } else if (kind == 2) {  // through a corner: cutting the box there, or only touching it
-                offset = glm::dot(normal, boxCorner(rng.index(8)));
-                break;
-            } else if (kind == 3) {  // containing an edge: through the box, or only touching it
-                const int axis = rng.index(3);
-                normal[axis] = 0.0;
-                if (normal == glm::dvec3(0.0)) continue;
-                offset = glm::dot(normal, boxCorner(rng.index(8)));
-                break;
-            } else if (kind == 4) {  // anywhere near the box, possibly missing it
-                offset = glm::dot(normal, grid(rng.inBox(lo - 0.5 * (hi - lo), hi + 0.5 * (hi - lo)), 1.0 / 1024.0));
-            } else {  // through the centre; once a zero normal
-                if (i == 5) normal = glm::dvec3(0.0);
-                offset = glm::dot(normal, 0.5 * (lo + hi));
-                break;
-            }
-            if (clearOfCorners(normal, offset)) break;
-        }
+        randomPlane(rng, i % 6, i, lo, hi, normal, offset);
         // The normal need not have unit length: scaled by 2^-10..2^10, and
         // one case in ten each by about 1e200 and 1e-300 (the handout's
         // extreme normals: |n| overflows or underflows when squared).

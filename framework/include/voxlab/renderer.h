@@ -36,6 +36,13 @@ enum class ParameterType { Float, Int, Bool };
 // or nothing it reads further (the samples' values and pixels only).
 enum class ProfileModel { None, Maximum, Minimum, Mean, FirstHit, Isosurface, Composite };
 
+// The value a first hit or an isosurface stops at (data units), and the
+// opacity at which compositing stops early (1: it does not).
+struct ProfileSettings {
+    double threshold = 0.0;
+    double earlyTermination = 1.0;
+};
+
 // One declared parameter. The command line (--param NAME=VALUE), scene files
 // ("parameters": {...}) and the viewer's panels all read these.
 //
@@ -149,8 +156,10 @@ public:
     // The entry fragment shader, found on the shader search path.
     virtual std::string fragmentShader() const { return "renderers/" + id() + ".frag"; }
     // How the ray profile reads the pixels of this renderer's rays
-    // (voxlab/ray_profile.h).
+    // (voxlab/ray_profile.h), and what it stops at, from the renderer's own
+    // parameters (read here, where they are declared).
     virtual ProfileModel profileModel() const { return ProfileModel::None; }
+    virtual ProfileSettings profileSettings(const ParameterValues&) const { return {}; }
     // Shaders the renderer makes itself (name -> GLSL text), added to the
     // engine's shader library ahead of the search path: a ray-value stage's
     // entry shader, made from a template (RayValueRenderer).

@@ -10,6 +10,10 @@
 
 namespace voxlab {
 
+// What the ray profile stops at for compositing (shared_parameters.cpp),
+// from compositingParameters().
+ProfileSettings compositingProfileSettings(const ParameterValues& values);
+
 class SlicerRenderer final : public Renderer {
 public:
     BrickCombine brickCombine(const ParameterValues&) const override { return BrickCombine::FirstHit; }
@@ -68,6 +72,7 @@ public:
     std::vector<ParameterSpec> parameters() const override;
     EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
     ProfileModel profileModel() const override { return ProfileModel::FirstHit; }
+    ProfileSettings profileSettings(const ParameterValues& values) const override;
 };
 
 class SlabMipRenderer final : public Renderer {
@@ -88,6 +93,9 @@ public:
     bool needsTransferFunction() const override { return true; }
     EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
     ProfileModel profileModel() const override { return ProfileModel::Composite; }
+    ProfileSettings profileSettings(const ParameterValues& values) const override {
+        return compositingProfileSettings(values);
+    }
     std::vector<Precomputation> precomputations(const Scene& scene, const Volume& volume,
                                                 const ParameterValues& values) const override;
     void checkScene(const Scene& scene, const ParameterValues& values) const override;
@@ -108,6 +116,7 @@ public:
     std::vector<ParameterSpec> parameters() const override;
     EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
     ProfileModel profileModel() const override { return ProfileModel::Isosurface; }
+    ProfileSettings profileSettings(const ParameterValues& values) const override;
     bool usesTransferFunction() const override { return false; }
 };
 
@@ -121,6 +130,9 @@ public:
     bool usesTransferFunction() const override { return false; }
     EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
     ProfileModel profileModel() const override { return ProfileModel::Composite; }
+    ProfileSettings profileSettings(const ParameterValues& values) const override {
+        return compositingProfileSettings(values);
+    }
 };
 
 // Object-order renderers: they draw proxy geometry (draw()) instead of
@@ -205,7 +217,8 @@ public:
 // light_elevation, min_gradient, and the gradient's sobel and
 // precomputed_gradients (see shaders/voxlab/lighting.glsl, gradients.glsl).
 std::vector<ParameterSpec> shadingParameters(bool shadingByDefault);
-// Compositing: early_termination, back_to_front, jitter.
+// Compositing: early_termination, back_to_front, jitter (what the ray
+// profile stops at, read from them, is declared at the top).
 std::vector<ParameterSpec> compositingParameters();
 // Draws the texture slicers' convex polygons in the order given (back to
 // front), and, when `outline` is set, the outlines of every n-th polygon on

@@ -107,12 +107,9 @@ RayProfile RenderEngine::profileRay(const Scene& given, int px, int py) {
     programsNoted_ = noted, tile_ = tile;
 
     for (const glm::vec4& r : in.records) in.displayed.push_back(r.y);
-    const auto parameter = [&](const char* name, double otherwise) {
-        const auto it = pass.values.find(name);
-        return it != pass.values.end() ? it->second : otherwise;
-    };
-    in.earlyTermination = parameter("back_to_front", 0.0) != 0.0 ? 1.0 : parameter("early_termination", 1.0);
-    in.threshold = profile.model == ProfileModel::Isosurface ? parameter("isovalue", 0.0) : parameter("threshold", 0.0);
+    const ProfileSettings settings = pass.renderer->profileSettings(pass.values);
+    in.earlyTermination = settings.earlyTermination;
+    in.threshold = settings.threshold;
     std::optional<TransferFunction> fallback;
     in.tf = passInputs(scene, pass, fallback).tf;
     in.window = scene.window.value_or(volume_->valueRange());

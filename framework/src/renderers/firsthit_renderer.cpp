@@ -2,6 +2,9 @@
 #include "voxlab/renderers.h"
 
 namespace voxlab {
+namespace {
+constexpr const char* kThreshold = "threshold";
+}
 
 std::string FirstHitRenderer::id() const { return "firsthit"; }
 
@@ -10,7 +13,7 @@ std::string FirstHitRenderer::description() const {
 }
 
 std::vector<ParameterSpec> FirstHitRenderer::parameters() const {
-    ParameterSpec threshold{"threshold", ParameterType::Float, 0.0, 1.0, 0.5,
+    ParameterSpec threshold{kThreshold, ParameterType::Float, 0.0, 1.0, 0.5,
                             "the value a sample must reach (data units; default: mid-range)"};
     threshold.dataUnits = true;
     return {threshold,
@@ -19,7 +22,11 @@ std::vector<ParameterSpec> FirstHitRenderer::parameters() const {
 
 EmptySpaceRule FirstHitRenderer::emptySpaceRule(const ParameterValues& values) const {
     // Nothing below the threshold can be the first hit.
-    return {EmptySpaceRule::Kind::AtLeast, values.at("threshold")};
+    return {EmptySpaceRule::Kind::AtLeast, values.at(kThreshold)};
+}
+
+ProfileSettings FirstHitRenderer::profileSettings(const ParameterValues& values) const {
+    return {values.at(kThreshold)};
 }
 
 }  // namespace voxlab

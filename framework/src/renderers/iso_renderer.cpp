@@ -2,6 +2,9 @@
 #include "voxlab/renderers.h"
 
 namespace voxlab {
+namespace {
+constexpr const char* kIsovalue = "isovalue";
+}
 
 std::string IsoRenderer::id() const { return "iso"; }
 
@@ -11,7 +14,7 @@ std::string IsoRenderer::description() const {
 
 std::vector<ParameterSpec> IsoRenderer::parameters() const {
     using T = ParameterType;
-    ParameterSpec isovalue{"isovalue", T::Float, 0.0, 1.0, 0.5, "the surface's value (data units; default: mid-range)"};
+    ParameterSpec isovalue{kIsovalue, T::Float, 0.0, 1.0, 0.5, "the surface's value (data units; default: mid-range)"};
     isovalue.dataUnits = true;
     std::vector<ParameterSpec> p = {
         isovalue,
@@ -27,7 +30,9 @@ std::vector<ParameterSpec> IsoRenderer::parameters() const {
 
 EmptySpaceRule IsoRenderer::emptySpaceRule(const ParameterValues& values) const {
     // A ray can only meet the surface where some value reaches the isovalue.
-    return {EmptySpaceRule::Kind::AtLeast, values.at("isovalue")};
+    return {EmptySpaceRule::Kind::AtLeast, values.at(kIsovalue)};
 }
+
+ProfileSettings IsoRenderer::profileSettings(const ParameterValues& values) const { return {values.at(kIsovalue)}; }
 
 }  // namespace voxlab

@@ -25,14 +25,24 @@ std::vector<ParameterSpec> shadingParameters(bool shadingByDefault) {
     };
 }
 
+namespace {
+constexpr const char* kEarlyTermination = "early_termination";
+constexpr const char* kBackToFront = "back_to_front";
+}  // namespace
+
 std::vector<ParameterSpec> compositingParameters() {
     using T = ParameterType;
     return {
-        {"early_termination", T::Float, 0.5, 1, 0.99,
-         "stop a ray once its opacity reaches this (1: never stop early)"},
-        {"back_to_front", T::Bool, 0, 1, 0, "composite from the back (no early termination; same image)"},
+        {kEarlyTermination, T::Float, 0.5, 1, 0.99, "stop a ray once its opacity reaches this (1: never stop early)"},
+        {kBackToFront, T::Bool, 0, 1, 0, "composite from the back (no early termination; same image)"},
         {"jitter", T::Bool, 0, 1, 0, "start each ray at a random fraction of a step (turns rings into noise)"},
     };
+}
+
+ProfileSettings compositingProfileSettings(const ParameterValues& values) {
+    ProfileSettings settings;
+    if (values.at(kBackToFront) == 0.0) settings.earlyTermination = values.at(kEarlyTermination);
+    return settings;
 }
 
 }  // namespace voxlab

@@ -234,6 +234,13 @@ TEST(BrickGrid, TightGradientBoundsHoldForTheirEstimatorEverywhere) {
                     const double value = cpuTrilinear(v, p);
                     ASSERT_GE(value, grid.wideRange[i].x - 1e-4);
                     ASSERT_LE(value, grid.wideRange[i].y + 1e-4);
+                    // Nearest sampling: within twice the bound (EmptySpaceRule::gradientBoundScale).
+                    if (estimator == GradientEstimator::Central) {
+                        glm::dvec3 nearest;
+                        for (int a = 0; a < 3; ++a) nearest[a] = cpuLineDerivative(v, p, a, true);
+                        ASSERT_LE(glm::length(nearest * v.minSpacing()), 2.0 * grid.gradientBound[i])
+                            << "nearest, bricks of " << size << ", brick " << b.x << "," << b.y << "," << b.z;
+                    }
                 }
             });
             // What the knowledge buys: on noise with solid balls, the bounds
@@ -483,6 +490,7 @@ const SkipCase kSkipCases[] = {
     {"tf2d", "tf2d", {}, Interpolation::Trilinear, false, true},
     // The GPU's filtering: fixed-point weights, within the bounds' margin.
     {"tf2d_shaded_hardware", "tf2d", {{"shading", 1}}, Interpolation::Hardware, false, true},
+    {"tf2d_nearest", "tf2d", {}, Interpolation::Nearest, false, true},
     {"tf2d_precomputed_gradients", "tf2d", {{"precomputed_gradients", 1}}, Interpolation::Trilinear, false, true},
     {"tf2d_shaded_sobel", "tf2d", {{"shading", 1}, {"sobel", 1}}, Interpolation::Trilinear, false, true},
     {"iso", "iso", {{"isovalue", 100}}},

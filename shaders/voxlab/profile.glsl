@@ -14,7 +14,8 @@
 // reads it, the value the entry shader last displayed (MIP's running
 // maximum: display_value's argument), where sample i lies along the ray and
 // how many samples the whole ray has (voxlab_profile_record(), written by a
-// main() that calls the entry shader's own: shader.cpp). Nothing of this is
+// main() that calls the entry shader's own: shader.cpp). The ray recorded is
+// the first sample_count() sees, the entry shader's own. Nothing of this is
 // compiled into a normal render (u_profile = 0, a baked constant).
 #ifndef VOXLAB_PROFILE_GLSL
 #define VOXLAB_PROFILE_GLSL
@@ -25,6 +26,7 @@ uniform int u_profile_width;    // the target's width: fragment (x, y) is sample
 uniform int u_profile_first;    // the sample of fragment (0, 0)
 
 int voxlab_profile_samples = -1;     // the whole ray's samples, once sample_count() has seen it
+bool voxlab_profile_hit = false;     // clip_to_volume() found the ray in the region
 float voxlab_profile_scalar = 0.0;   // display_value()'s last argument
 
 // The last sample fragment i's ray keeps.

@@ -92,6 +92,7 @@ bool clip_to_volume(inout Ray ray) {
     for (int i = 0; i < u_clip_plane_count; ++i)
         if (!clip_to_half_space(ray, u_clip_plane_points[i], u_clip_plane_normals[i])) return false;
     if (u_clip_plane != 0 && !clip_to_half_space(ray, u_clip_point, u_clip_normal)) return false;
+    voxlab_profile_hit = true;  // the ray profile's record: the ray meets the region
     return true;
 }
 
@@ -108,8 +109,10 @@ bool inside_region(vec3 p) {
 int sample_count(Ray ray) {
     int n = int(floor((ray.t_exit - ray.t_entry) / u_step + 0.5));
     if (u_profile == 0) return n;
-    voxlab_profile_ray = ray;
-    voxlab_profile_samples = n;
+    if (voxlab_profile_samples < 0) {  // the first call: the entry's primary ray
+        voxlab_profile_ray = ray;
+        voxlab_profile_samples = n;
+    }
     return min(n, voxlab_profile_index() + 1);
 }
 
@@ -183,10 +186,11 @@ float depth_grey(Ray ray, float t) {
 
 // The profile's record of this fragment's sample (voxlab/profile.glsl):
 // (value, displayed value, t, samples of the whole ray); the last is -1
-// when the ray missed the region and -2 when a stage is not implemented.
+// when the ray missed the region, -2 when a stage is not implemented and
+// -3 when the ray met the region but nothing asked sample_count().
 vec4 voxlab_profile_record() {
     if (voxlab_not_implemented) return vec4(0.0, 0.0, 0.0, -2.0);
-    if (voxlab_profile_samples < 0) return vec4(0.0, 0.0, 0.0, -1.0);
+    if (voxlab_profile_samples < 0) return vec4(0.0, 0.0, 0.0, voxlab_profile_hit ? -3.0 : -1.0);
     int i = voxlab_profile_index();
     float t = voxlab_profile_ray.t_entry + (float(i) + 0.5) * u_step;
     float value = i < voxlab_profile_samples ? sample_volume(sample_location(voxlab_profile_ray, i)) : 0.0;

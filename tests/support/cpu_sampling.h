@@ -41,15 +41,22 @@ inline double cpuTrilinear(const Volume& v, glm::dvec3 p) {
     return sum;
 }
 
+// Nearest-neighbour sampling at world point p: the voxel whose cell holds it.
+inline double cpuNearest(const Volume& v, glm::dvec3 p) {
+    return clampedVoxel(v, glm::ivec3(glm::floor(p / v.spacing())));
+}
+
 // d f / d(world) along `axis` at world point p, by the central difference
-// of the interpolated field (see above); 0 on a one-voxel axis.
-inline double cpuLineDerivative(const Volume& v, glm::dvec3 p, int axis) {
+// of the interpolated field (see above); 0 on a one-voxel axis. With
+// `nearest`, of the nearest-neighbour field instead.
+inline double cpuLineDerivative(const Volume& v, glm::dvec3 p, int axis, bool nearest = false) {
     const double h = v.spacing()[axis];
     glm::dvec3 lo = p, hi = p;
     lo[axis] = std::clamp(p[axis] - h, 0.5 * h, v.extent()[axis] - 0.5 * h);
     hi[axis] = std::clamp(p[axis] + h, 0.5 * h, v.extent()[axis] - 0.5 * h);
     if (hi[axis] <= lo[axis]) return 0.0;
-    return (cpuTrilinear(v, hi) - cpuTrilinear(v, lo)) / (hi[axis] - lo[axis]);
+    const auto f = [&](glm::dvec3 q) { return nearest ? cpuNearest(v, q) : cpuTrilinear(v, q); };
+    return (f(hi) - f(lo)) / (hi[axis] - lo[axis]);
 }
 
 // The gradient stage's central differences at world point p, in data units

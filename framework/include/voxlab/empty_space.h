@@ -114,6 +114,10 @@ struct EmptySpaceRule {
     // use, for the tight bounds; none (precomputed gradients): the bound
     // that holds for any.
     std::optional<GradientEstimator> gradients;
+    // TransferFunction2D with nearest sampling: the stage's quotients near
+    // the volume's faces, over a clamped distance between half a voxel and
+    // one, reach twice the one-voxel difference; the bounds are doubled.
+    double gradientBoundScale = 1.0;
 };
 
 // The bricks of the grid a rule skips with: kBrickSize voxels a side, but
@@ -138,7 +142,8 @@ std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const TransferFun
 // [0, gradient bound]; Levoy's triangle (value v0, radius r) is non-zero
 // where |v - v0| <= r |g|, so it needs v0 within r times the gradient bound
 // of the range. The bounds must hold for the estimator the samples use.
-std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const std::vector<Tf2dWidget>& widgets);
+std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const std::vector<Tf2dWidget>& widgets,
+                                        double boundScale = 1.0);
 
 // AtLeast: visible where the brick's largest value reaches the threshold.
 std::vector<std::uint8_t> bricksReaching(const BrickGrid& grid, double threshold);

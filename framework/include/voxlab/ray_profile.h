@@ -88,6 +88,7 @@ struct RayProfile {
 // pixel; the whole ray's sample count (-1: the ray misses the region;
 // kProfileStub: a stage's stub was reached).
 inline constexpr int kProfileStub = -2;
+inline constexpr int kProfileNoSamples = -3;  // the ray meets the region, but nothing asked sample_count()
 struct ProfileReadings {
     std::vector<glm::vec4> accumulated, records;
     std::vector<double> displayed;  // records' displayed values, per sample

@@ -157,8 +157,11 @@ void fillTightGradientBounds(const Volume& volume, BrickGrid* grid, int apron) {
             for (int y = 0; y < dims.y; ++y)
                 for (int x = 0; x < dims.x; ++x) {
                     Column& c = columns[std::size_t(y) * std::size_t(dims.x) + std::size_t(x)];
-                    const double v = at(x, y, z);
-                    c.lo = std::min(c.lo, v), c.hi = std::max(c.hi, v);
+                    // The values' spread for the filtering allowance: the
+                    // voxel and the neighbours its differences read.
+                    for (const double v : {at(x, y, z), at(x - 1, y, z), at(x + 1, y, z), at(x, y - 1, z),
+                                           at(x, y + 1, z), at(x, y, z - 1), at(x, y, z + 1)})
+                        c.lo = std::min(c.lo, v), c.hi = std::max(c.hi, v);
                     c.reach.x = std::max(c.reach.x, centralReach([&](int k) { return at(k, y, z); }, x, dims.x));
                     c.reach.y = std::max(c.reach.y, centralReach([&](int k) { return at(x, k, z); }, y, dims.y));
                     c.reach.z = std::max(c.reach.z, centralReach([&](int k) { return at(x, y, k); }, z, dims.z));
@@ -179,7 +182,9 @@ void fillTightGradientBounds(const Volume& volume, BrickGrid* grid, int apron) {
                 grid->gradientBound[i] =
                     float(glm::length(reach) * (1.0 + 1e-5) + 1e-6 * (std::abs(all.lo) + std::abs(all.hi)));
             }
-        volume.releaseSlices(first(bz), bz + 1 < grid->count.z ? first(bz + 1) : dims.z);
+        // The next layer reads from one slice before its first (the differences).
+        const int next = bz + 1 < grid->count.z ? std::max(first(bz + 1) - 1, first(bz)) : dims.z;
+        volume.releaseSlices(first(bz), next);
     }
 }
 
@@ -243,14 +248,15 @@ std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const TransferFun
     return visible;
 }
 
-std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const std::vector<Tf2dWidget>& widgets) {
+std::vector<std::uint8_t> visibleBricks(const BrickGrid& grid, const std::vector<Tf2dWidget>& widgets,
+                                        double boundScale) {
     if (grid.gradientBound.size() != grid.brickCount())
         throw Error("empty-space skipping: the 2D transfer function needs the brick grid's gradient bounds "
                     "(BrickGrid::computeGradientBounds)");
     std::vector<std::uint8_t> visible(grid.brickCount(), 0);
     for (std::size_t i = 0; i < visible.size(); ++i) {
         const double lo = grid.wideRange[i].x, hi = grid.wideRange[i].y;
-        const double gradientBound = grid.gradientBound[i];
+        const double gradientBound = boundScale * grid.gradientBound[i];
         for (const Tf2dWidget& w : widgets) {
             if (!(w.alpha > 0.0f)) continue;
             bool reaches;

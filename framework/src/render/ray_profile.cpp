@@ -113,6 +113,11 @@ void fillRayProfile(RayProfile& profile, const ProfileReadings& in) {
         profile.why = "a stage it needs is not implemented yet: its stub was reached";
         return;
     }
+    if (in.samples == kProfileNoSamples) {
+        profile.hitsVolume = true;
+        profile.why = profile.renderer + "'s shader takes no samples through sample_count(): nothing to follow";
+        return;
+    }
     profile.hitsVolume = in.samples >= 0;
     if (!profile.hitsVolume) {
         profile.why = "the ray misses the volume";

@@ -423,6 +423,18 @@ void RenderEngine::drawFullScreen(const Pass& pass, const ShaderProgram& prog) {
     if (!pass.layer) mainProgramStubs_ = prog.stubs();  // one pass: its pixels can say which stubs ran
 }
 
+namespace {
+
+// The renderer's empty-space rule, with what the scene adds to it (nearest
+// sampling's doubled gradient bounds, empty_space.h).
+EmptySpaceRule skippingRule(const Scene& scene, const Renderer& renderer, const ParameterValues& values) {
+    EmptySpaceRule rule = renderer.emptySpaceRule(values);
+    if (scene.interpolation == Interpolation::Nearest) rule.gradientBoundScale = 2.0;
+    return rule;
+}
+
+}  // namespace
+
 void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     const Renderer& renderer = *pass.renderer;
     std::optional<TransferFunction> fallback;
@@ -452,8 +464,10 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
     if (combine == BrickCombine::None) bindVolumeBrick(0, prog, scene);
     bindTables(scene, pass, inputs);
 
-    // Precomputed textures first: they draw into framebuffers of their own.
+    // Precomputed textures first: they draw into framebuffers of their own
+    // (never instrumented for the ray profile: the same textures, computed once).
     constants["u_skipping"] = 0;
+    constants["u_profile"] = 0;
     const std::vector<Precomputation> precomputations = renderer.precomputations(scene, *volume_, pass.values);
     for (std::size_t i = 0; i < precomputations.size(); ++i)
         runPrecomputation(precomputations[i], int(i), scene, pass, inputs, constants);
@@ -466,7 +480,7 @@ void RenderEngine::draw(const Scene& scene, const Pass& pass) {
         setPassUniforms(p, scene, pass, inputs);
         bindPrecomputations(p, precomputations, pass.slot);
         sceneVolumes_->bind(p, scene, *volume_);
-        if (skipping) bindBricks(p, renderer.emptySpaceRule(pass.values), table, inputs.widgets);
+        if (skipping) bindBricks(p, skippingRule(scene, renderer, pass.values), table, inputs.widgets);
         p.set("u_count_samples", countingSamples_ ? 1 : 0);  // ignored where switchesFor baked it
         p.set("u_report_stubs", reportingStubs_ ? 1 : 0);
     };

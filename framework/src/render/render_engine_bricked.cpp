@@ -85,7 +85,10 @@ bool RenderEngine::brickNeeded(int brick, const Camera& cam, bool skipping) cons
     if (!inView(cam, glm::dvec3(b.lo) * spacing, glm::dvec3(b.hi) * spacing)) return false;
     if (!skipping || !skipping_) return true;
     const BrickGrid& grid = *skipping_->grid;
-    const glm::ivec3 from = b.lo / grid.brickSize, to = (b.hi - 1) / grid.brickSize;
+    // One cell more on each side: a sample on the brick's face, placed in
+    // float, may be looked up in the cell beyond it.
+    const glm::ivec3 from = glm::max(b.lo / grid.brickSize - 1, glm::ivec3(0));
+    const glm::ivec3 to = glm::min((b.hi - 1) / grid.brickSize + 1, grid.count - 1);
     for (int z = from.z; z <= to.z; ++z)
         for (int y = from.y; y <= to.y; ++y)
             for (int x = from.x; x <= to.x; ++x)

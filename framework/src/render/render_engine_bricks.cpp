@@ -34,7 +34,7 @@ void RenderEngine::bindBricks(const ShaderProgram& prog, const EmptySpaceRule& r
             // Once per volume and estimator.
             if (grid.gradientBound.empty() || grid.boundsFor != rule.gradients)
                 grid.computeGradientBounds(*volume_, rule.gradients);
-            visible = visibleBricks(grid, widgets);
+            visible = visibleBricks(grid, widgets, rule.gradientBoundScale);
             break;
         case EmptySpaceRule::Kind::AtLeast: visible = bricksReaching(grid, rule.threshold); break;
         case EmptySpaceRule::Kind::None: visible = allBricksVisible(grid); break;

@@ -110,6 +110,9 @@ RayProfile RenderEngine::profileRay(const Scene& given, int px, int py) {
     const ProfileSettings settings = pass.renderer->profileSettings(pass.values);
     in.earlyTermination = settings.earlyTermination;
     in.threshold = settings.threshold;
+    if (scene.cuttingPlane && scene.cuttingPlane->otherRenderer != "none")
+        profile.note = "cutting plane: only " + profile.renderer + "'s half-space is followed, not " +
+                       scene.cuttingPlane->otherRenderer + "'s";
     std::optional<TransferFunction> fallback;
     in.tf = passInputs(scene, pass, fallback).tf;
     in.window = scene.window.value_or(volume_->valueRange());

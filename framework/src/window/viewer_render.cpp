@@ -364,7 +364,12 @@ void pickRayProfile(State& s, glm::ivec2 pixel) {
     // The side's own engine: its implementation's stages are the ones the
     // profile shows (the student's on the left, the other side's on the right).
     RenderEngine& engine = right && s.other.engine ? *s.other.engine : *s.main.engine;
-    s.profile = engine.profileRay(scene, pixel.x, pixel.y);
+    try {
+        s.profile = engine.profileRay(scene, pixel.x, pixel.y);
+    } catch (const Error& e) {  // a shader that does not compile, say: the image keeps its last good one
+        s.say(std::string("ray profile: ") + e.what(), 6.0);
+        return;
+    }
     s.profilePixel = pixel;
     s.profileCamera = s.scene.camera;
     s.showProfile = true;

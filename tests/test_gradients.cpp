@@ -408,23 +408,8 @@ TEST_P(GpuGradients, QuadraticFieldShowsTheDiscreteEstimatorAtVoxelCentres) {
 // centres [h/2, extent - h/2], over the distance left between them; Sobel
 // averages that over the 3 x 3 parallel lines at +-1 voxel across (not
 // clamped: the sampler's clamp-to-edge continues the border voxels
-// outwards). Central differences come from tests/support/cpu_sampling.h.
-
-glm::dvec3 pointSobel(const Volume& v, glm::dvec3 p) {
-    glm::dvec3 g(0.0);
-    const double weight[3] = {1.0, 2.0, 1.0};
-    for (int axis = 0; axis < 3; ++axis) {
-        const int a = (axis + 1) % 3, b = (axis + 2) % 3;
-        for (int da = -1; da <= 1; ++da)
-            for (int db = -1; db <= 1; ++db) {
-                glm::dvec3 q = p;
-                q[a] += da * v.spacing()[a];
-                q[b] += db * v.spacing()[b];
-                g[axis] += weight[da + 1] * weight[db + 1] / 16.0 * cpuLineDerivative(v, q, axis);
-            }
-    }
-    return g * v.minSpacing();
-}
+// outwards). Both come from tests/support/cpu_sampling.h (cpuCentralGradient,
+// cpuSobelGradient).
 
 // The precomputed path instead reads the voxels' gradients (computed on the
 // CPU with the discrete estimator), linearly interpolated like the volume.
@@ -494,7 +479,7 @@ TEST_P(GpuGradients, NonLinearFieldMatchesTheDefinitionBetweenVoxels) {
                 if (glm::any(glm::lessThan(p, margin)) || glm::any(glm::greaterThan(p, v.extent() - margin)))
                     continue;
                 const double g = glm::length(c.precomputed ? interpolatedVoxelGradient(v, p, c.sobel)
-                                                           : c.sobel ? pointSobel(v, p) : cpuCentralGradient(v, p));
+                                                           : c.sobel ? cpuSobelGradient(v, p) : cpuCentralGradient(v, p));
                 want.push_back({{px, py}, g});
                 biggest = std::max(biggest, g);
             }

@@ -91,7 +91,6 @@ inline constexpr int kProfileStub = -2;
 inline constexpr int kProfileNoSamples = -3;  // the ray meets the region, but nothing asked sample_count()
 struct ProfileReadings {
     std::vector<glm::vec4> accumulated, records;
-    std::vector<double> displayed;  // records' displayed values, per sample
     glm::vec4 result{0.0f};
     int samples = -1;
     double earlyTermination = 1.0;  // composite's parameter (1: none)

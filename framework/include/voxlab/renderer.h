@@ -195,6 +195,9 @@ public:
     // the shared parameters `precomputed_gradients` and `sobel` get it when
     // `precomputed_gradients` is on; others never do.
     std::optional<GradientEstimator> precomputedGradients(const ParameterValues& values) const;
+    // The estimator the shader runs at every sample instead; none when the
+    // gradients are precomputed.
+    std::optional<GradientEstimator> onTheFlyGradients(const ParameterValues& values) const;
     // The textures to compute before drawing (see Precomputation); none by
     // default.
     virtual std::vector<Precomputation> precomputations(const Scene& scene, const Volume& volume,

@@ -224,6 +224,19 @@ unsigned compileStage(GLenum stage, const PreprocessedShader& src) {
     return shader;
 }
 
+// The entry shader's main() renamed voxlab_entry_main and called from a
+// main() of ours: `declarations` go before it, `before` and `after` around
+// the call. A shader without a main() is left as it is.
+PreprocessedShader aroundMain(PreprocessedShader fs, const std::string& declarations, const std::string& before,
+                              const std::string& after) {
+    const std::size_t firstLine = fs.text.find('\n');
+    if (firstLine == std::string::npos || !declaresMain(fs.text)) return fs;
+    fs.text.insert(firstLine + 1, "#define main voxlab_entry_main\n");
+    fs.text += "\n#undef main\n" + declarations + "void main() {\n" + before + "    voxlab_entry_main();\n" + after +
+               "}\n";
+    return fs;
+}
+
 // llvmpipe, Mesa's software rasterizer, JIT-compiles the fragment shader of
 // a draw that neither blends nor can discard ("opaque", lp_state_fs.c) twice:
 // once for whole 64x64 tiles, once for tiles that a triangle's edge crosses.
@@ -238,12 +251,7 @@ unsigned compileStage(GLenum stage, const PreprocessedShader& src) {
 // dst + (src - dst), off by one unit in the last place wherever the target
 // held something.) Other drivers get the shader as written.
 PreprocessedShader compiledOnceOnLlvmpipe(PreprocessedShader fs) {
-    const std::size_t firstLine = fs.text.find('\n');
-    if (firstLine == std::string::npos || !declaresMain(fs.text)) return fs;
-    fs.text.insert(firstLine + 1, "#define main voxlab_entry_main\n");
-    fs.text += "\n#undef main\nuniform bool voxlab_never_set;\n"
-               "void main() {\n    if (voxlab_never_set) discard;\n    voxlab_entry_main();\n}\n";
-    return fs;
+    return aroundMain(std::move(fs), "uniform bool voxlab_never_set;\n", "    if (voxlab_never_set) discard;\n", "");
 }
 
 // The ray profile's record pass (u_profile = 2, voxlab/profile.glsl): the
@@ -251,11 +259,7 @@ PreprocessedShader compiledOnceOnLlvmpipe(PreprocessedShader fs) {
 // to what the ray library recorded of this fragment's sample. Every entry
 // shader of a ray caster writes `frag_color`.
 PreprocessedShader withProfileRecord(PreprocessedShader fs) {
-    const std::size_t firstLine = fs.text.find('\n');
-    if (firstLine == std::string::npos || !declaresMain(fs.text)) return fs;
-    fs.text.insert(firstLine + 1, "#define main voxlab_entry_main\n");
-    fs.text += "\n#undef main\nvoid main() {\n    voxlab_entry_main();\n    frag_color = voxlab_profile_record();\n}\n";
-    return fs;
+    return aroundMain(std::move(fs), "", "", "    frag_color = voxlab_profile_record();\n");
 }
 
 }  // namespace

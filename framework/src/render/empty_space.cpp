@@ -118,10 +118,11 @@ void fillGradientBounds(const Volume& volume, BrickGrid* grid) {
 // The largest |difference quotient| the central-difference stage can take
 // where it reads voxel i along one axis of n voxels (see empty_space.h):
 // |D(i)|, and near the faces also the one-voxel differences there. `at(k)`
-// reads voxel k along the axis (clamped).
+// reads voxel k along the axis (clamped); `before` and `after` are voxels
+// i - 1 and i + 1, read already.
 template <class At>
-double centralReach(const At& at, int i, int n) {
-    double d = std::abs(at(i + 1) - at(i - 1)) * 0.5;
+double centralReach(const At& at, int i, int n, double before, double after) {
+    double d = std::abs(after - before) * 0.5;
     if (i <= 1) d = std::max({d, std::abs(at(1) - at(0)), std::abs(at(2) - at(1))});
     if (i >= n - 2) d = std::max({d, std::abs(at(n - 1) - at(n - 2)), std::abs(at(n - 2) - at(n - 3))});
     return d;
@@ -157,14 +158,19 @@ void fillTightGradientBounds(const Volume& volume, BrickGrid* grid, int apron) {
             for (int y = 0; y < dims.y; ++y)
                 for (int x = 0; x < dims.x; ++x) {
                     Column& c = columns[std::size_t(y) * std::size_t(dims.x) + std::size_t(x)];
-                    // The values' spread for the filtering allowance: the
-                    // voxel and the neighbours its differences read.
-                    for (const double v : {at(x, y, z), at(x - 1, y, z), at(x + 1, y, z), at(x, y - 1, z),
-                                           at(x, y + 1, z), at(x, y, z - 1), at(x, y, z + 1)})
-                        c.lo = std::min(c.lo, v), c.hi = std::max(c.hi, v);
-                    c.reach.x = std::max(c.reach.x, centralReach([&](int k) { return at(k, y, z); }, x, dims.x));
-                    c.reach.y = std::max(c.reach.y, centralReach([&](int k) { return at(x, k, z); }, y, dims.y));
-                    c.reach.z = std::max(c.reach.z, centralReach([&](int k) { return at(x, y, k); }, z, dims.z));
+                    // The voxel and the neighbours its differences read: the
+                    // reach along each axis, and the values' spread for the
+                    // filtering allowance.
+                    const double v = at(x, y, z), xm = at(x - 1, y, z), xp = at(x + 1, y, z);
+                    const double ym = at(x, y - 1, z), yp = at(x, y + 1, z), zm = at(x, y, z - 1), zp = at(x, y, z + 1);
+                    c.lo = std::min({c.lo, v, xm, xp, ym, yp, zm, zp});
+                    c.hi = std::max({c.hi, v, xm, xp, ym, yp, zm, zp});
+                    const auto alongX = [&](int k) { return at(k, y, z); };
+                    const auto alongY = [&](int k) { return at(x, k, z); };
+                    const auto alongZ = [&](int k) { return at(x, y, k); };
+                    c.reach.x = std::max(c.reach.x, centralReach(alongX, x, dims.x, xm, xp));
+                    c.reach.y = std::max(c.reach.y, centralReach(alongY, y, dims.y, ym, yp));
+                    c.reach.z = std::max(c.reach.z, centralReach(alongZ, z, dims.z, zm, zp));
                 }
         for (int by = 0; by < grid->count.y; ++by)
             for (int bx = 0; bx < grid->count.x; ++bx) {

@@ -74,10 +74,10 @@ void deriveProjection(RayProfile& profile, const ProfileReadings& in) {
     const bool isMin = profile.model == ProfileModel::Minimum, isMean = profile.model == ProfileModel::Mean;
     for (std::size_t i = 0; i < profile.samples.size(); ++i) {
         RaySample& s = profile.samples[i];
-        const double shown = in.displayed[i];
+        const double shown = in.records[i].y;
         (isMean ? s.runningMean : isMin ? s.runningMin : s.runningMax) = shown;
         s.classified = displayColour(s.value, in.window, in.tf);
-        if (!isMean && (i == 0 || shown != in.displayed[i - 1])) profile.chosen = int(i);  // where it last changed
+        if (!isMean && (i == 0 || shown != in.records[i - 1].y)) profile.chosen = int(i);  // where it last changed
     }
     profile.why = "the ray left the volume";
 }

@@ -30,9 +30,10 @@ constexpr int kPastTheEnd = 1 << 30;  // a sample index beyond any ray
 std::vector<glm::vec4> RenderEngine::drawProfilePass(const Scene& scene, const Pass& pass, int which, int first,
                                                      int count) {
     const int width = std::min(count, kRowWidth), height = (count + width - 1) / width;
-    if (!profileTarget_.made() || profileTargetSize_ != glm::ivec2(width, height)) {
-        profileTarget_.make(width, height);
-        profileTargetSize_ = glm::ivec2(width, height);
+    // The target only grows: a profile's four passes draw into its corner.
+    if (!profileTarget_.made() || profileTargetSize_.x < width || profileTargetSize_.y < height) {
+        profileTargetSize_ = glm::max(profileTargetSize_, glm::ivec2(width, height));
+        profileTarget_.make(profileTargetSize_.x, profileTargetSize_.y);
     }
     std::vector<glm::vec4> out(std::size_t(width) * std::size_t(height));
     profilePass_ = which, profileWidth_ = width, profileFirst_ = first;
@@ -81,32 +82,30 @@ RayProfile RenderEngine::profileRay(const Scene& given, int px, int py) {
     }
 
     // The profile's draws leave what the last render noted (its sources,
-    // its stubs) and the image's tile as they were.
-    const std::vector<std::string> sources = lastRenderSources_, stubs = lastRenderStubs_,
-                                   mainStubs = mainProgramStubs_;
-    const int noted = programsNoted_;
-    const std::optional<glm::ivec4> tile = tile_;
-    tile_.reset();
-    profilePixel_ = glm::vec2(px, py);
-    ProfileReadings in;
-    try {
-        const glm::vec4 whole = drawProfilePass(scene, pass, 2, kPastTheEnd, 1)[0];
-        in.samples = int(whole.w);
-        in.result = drawProfilePass(scene, pass, 1, kPastTheEnd, 1)[0];
-        const int kept = std::min(std::max(in.samples, 0), kMaxSamples);
-        if (kept > 0) {
-            in.accumulated = drawProfilePass(scene, pass, 1, 0, kept);
-            in.records = drawProfilePass(scene, pass, 2, 0, kept);
+    // its stubs) and the image's tile as they were, thrown through or not.
+    struct Kept {
+        RenderEngine& e;
+        std::vector<std::string> sources = e.lastRenderSources_, stubs = e.lastRenderStubs_,
+                                 mainStubs = e.mainProgramStubs_;
+        int noted = e.programsNoted_;
+        std::optional<glm::ivec4> tile = std::exchange(e.tile_, std::nullopt);
+        ~Kept() {
+            e.lastRenderSources_ = sources, e.lastRenderStubs_ = stubs, e.mainProgramStubs_ = mainStubs;
+            e.programsNoted_ = noted, e.tile_ = tile;
         }
-    } catch (...) {
-        lastRenderSources_ = sources, lastRenderStubs_ = stubs, mainProgramStubs_ = mainStubs;
-        programsNoted_ = noted, tile_ = tile;
-        throw;
+    };
+    ProfileReadings in;
+    {
+        const Kept kept{*this};
+        profilePixel_ = glm::vec2(px, py);
+        in.samples = int(drawProfilePass(scene, pass, 2, kPastTheEnd, 1)[0].w);
+        in.result = drawProfilePass(scene, pass, 1, kPastTheEnd, 1)[0];
+        const int count = std::min(std::max(in.samples, 0), kMaxSamples);
+        if (count > 0) {
+            in.accumulated = drawProfilePass(scene, pass, 1, 0, count);
+            in.records = drawProfilePass(scene, pass, 2, 0, count);
+        }
     }
-    lastRenderSources_ = sources, lastRenderStubs_ = stubs, mainProgramStubs_ = mainStubs;
-    programsNoted_ = noted, tile_ = tile;
-
-    for (const glm::vec4& r : in.records) in.displayed.push_back(r.y);
     const ProfileSettings settings = pass.renderer->profileSettings(pass.values);
     in.earlyTermination = settings.earlyTermination;
     in.threshold = settings.threshold;

@@ -51,13 +51,28 @@ void Renderer::checkScene(const Scene& scene, const ParameterValues&) const {
 
 BrickCombine Renderer::brickCombine(const ParameterValues&) const { return BrickCombine::None; }
 
-std::optional<GradientEstimator> Renderer::precomputedGradients(const ParameterValues& values) const {
+namespace {
+
+// The estimator the parameters `sobel` and `precomputed_gradients` choose,
+// and whether it is precomputed.
+std::pair<GradientEstimator, bool> gradientChoice(const ParameterValues& values) {
     const auto on = [&](const char* name) {
         const auto it = values.find(name);
         return it != values.end() && it->second != 0.0;
     };
-    if (!on("precomputed_gradients")) return std::nullopt;
-    return on("sobel") ? GradientEstimator::Sobel : GradientEstimator::Central;
+    return {on("sobel") ? GradientEstimator::Sobel : GradientEstimator::Central, on("precomputed_gradients")};
+}
+
+}  // namespace
+
+std::optional<GradientEstimator> Renderer::precomputedGradients(const ParameterValues& values) const {
+    const auto [estimator, precomputed] = gradientChoice(values);
+    return precomputed ? std::optional<GradientEstimator>(estimator) : std::nullopt;
+}
+
+std::optional<GradientEstimator> Renderer::onTheFlyGradients(const ParameterValues& values) const {
+    const auto [estimator, precomputed] = gradientChoice(values);
+    return precomputed ? std::nullopt : std::optional<GradientEstimator>(estimator);
 }
 
 EmptySpaceRule Renderer::emptySpaceRule(const ParameterValues&) const { return {}; }

@@ -20,11 +20,7 @@ std::vector<ParameterSpec> Tf2dRenderer::parameters() const {
 // precomputed gradients: none (the bound that holds for any).
 EmptySpaceRule Tf2dRenderer::emptySpaceRule(const ParameterValues& values) const {
     EmptySpaceRule rule{EmptySpaceRule::Kind::TransferFunction2D};
-    if (!precomputedGradients(values)) {
-        const auto sobel = values.find("sobel");
-        rule.gradients = sobel != values.end() && sobel->second != 0.0 ? GradientEstimator::Sobel
-                                                                         : GradientEstimator::Central;
-    }
+    rule.gradients = onTheFlyGradients(values);
     return rule;
 }
 

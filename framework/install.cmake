@@ -4,6 +4,7 @@
 #   share/voxlab/shaders, datasets, ...      the project root voxlab finds from
 #                                            its own location (voxlab/project_root.h)
 #   share/voxlab/framework/include           the headers C++ stages compile against
+#   share/voxlab/framework/stages            the stages' own shaders
 #   share/voxlab/framework/stage_library     the exports every stage library links,
 #                                            prebuilt, and the precompiled prelude
 #   share/doc/voxlab                         the documentation
@@ -28,6 +29,9 @@ if(EXISTS "${PROJECT_SOURCE_DIR}/tests/golden/scenes")
 endif()
 
 install(DIRECTORY framework/include DESTINATION ${VOXLAB_INSTALL_ROOT}/framework)
+# The stages' own shaders (entry, probe, precomputation passes).
+install(DIRECTORY framework/stages DESTINATION ${VOXLAB_INSTALL_ROOT}/framework
+        FILES_MATCHING PATTERN "*.frag" PATTERN "*.vert" PATTERN "*.glsl")
 install(FILES framework/stage_library/stage_exports.cpp framework/stage_library/stage_prelude.h
         DESTINATION ${VOXLAB_INSTALL_ROOT}/framework/stage_library)
 install(FILES $<TARGET_OBJECTS:voxlab_stage_exports>

@@ -88,7 +88,7 @@ poisoned_fails "installed" "$prefix/$share/framework/include/voxlab/proxy_geomet
 copy="$work/copied-checkout"
 mkdir -p "$copy/build/bin" "$copy/framework"
 cp -r "$project/shaders" "$project/datasets" "$project/reference" "$project/assignments" "$copy/"
-cp -r "$project/framework/include" "$project/framework/stage_library" "$copy/framework/"
+cp -r "$project/framework/include" "$project/framework/stage_library" "$project/framework/stages" "$copy/framework/"
 cp "$build/bin/voxlab" "$build/bin/voxlab-stage-host" "$copy/build/bin/"
 full_marks "copied checkout" "$(grade "$copy/build" copied "$copy/reference")" copied
 poisoned_fails "copied checkout" "$copy/framework/include/voxlab/proxy_geometry.h" "$copy/build" \

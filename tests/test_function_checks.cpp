@@ -31,7 +31,9 @@
 
 #include "support/error_of.h"
 #include "support/gl_fixture.h"
+#include "voxlab/function_check_support.h"
 #include "voxlab/function_checks.h"
+#include "voxlab/glsl_probe.h"
 #include "voxlab/scene.h"
 #include "voxlab/shader.h"
 #include "voxlab/transfer_function_2d.h"
@@ -85,6 +87,20 @@ TEST_F(FunctionChecks, ListsOneCheckPerStageWithADescription) {
               std::string::npos);
     EXPECT_NE(errorOf([] { runFunctionCheck("phong_random", "/nonexistent/folder"); }).find("not a folder"),
               std::string::npos);
+}
+
+// The inputs a check records are the floats the GPU computes with: the
+// built f32() rounds every component (GCC 12's SLP vectorizer, left on for
+// the checks, returned x and y unrounded: framework/CMakeLists.txt), and so
+// every direction of the splat check, computed from doubles, is one.
+TEST_F(FunctionChecks, FloatRoundingIsKept) {
+    const glm::dvec3 v(0.1, 1.0 / 3.0, 2.0 / 7.0);
+    const glm::dvec3 r = check::f32(v);
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(r[a], double(float(v[a]))) << "component " << a;
+    EXPECT_EQ(check::unitF32(v).x, double(float(glm::normalize(v).x)));
+    for (const json& c : runFunctionCheck("splat_order_random", "").at("cases"))
+        for (const json& x : c.at("input").at("view_direction"))
+            ASSERT_EQ(x.get<double>(), double(float(x.get<double>()))) << c.dump();
 }
 
 // The reference against itself: every case agrees, also once the expected
@@ -829,13 +845,21 @@ TEST_F(FunctionChecks, CompileErrorsThrowAndNaNsFail) {
     EXPECT_NE(r.examples.at(0).find("got NaN (NaN)"), std::string::npos) << r.examples[0];
 }
 
-// A submission cannot bring its own probe (which could write anything).
+// A submission cannot bring its own probe (which could write anything): a
+// probe is named "stages/STAGE/FILE", which only the framework's stage
+// folders answer, so a planted stages/ is never read.
 TEST_F(FunctionChecks, SubmissionsCannotReplaceAProbe) {
     const std::filesystem::path root = std::filesystem::path(::testing::TempDir()) / "checks_own_probe";
-    std::filesystem::create_directories(root / "probes");
-    std::ofstream(root / "probes" / "phong_probe.frag") << "#version 330 core\nvoid main() {}\n";
-    EXPECT_NE(errorOf([&] { runFunctionCheck("phong_random", root.string()); })
-                  .find("replaces the grader's probe shader probes/phong_probe.frag"),
+    std::filesystem::remove_all(root);
+    std::filesystem::create_directories(root / "stages" / "shading");
+    std::ofstream(root / "stages" / "shading" / "phong_probe.frag")
+        << "#version 330 core\nout vec4 o;\nvoid main() { o = vec4(1.0); }\n";
+    const nlohmann::json planted = runFunctionCheck("phong_random", root.string());
+    const nlohmann::json reference = runFunctionCheck("phong_random", "");
+    EXPECT_EQ(planted["cases"], reference["cases"]);  // the framework's probe, the reference's stage
+    EXPECT_FALSE(planted["not_implemented"].get<bool>());
+    // The probe's name is checked too: anything but a stage's probe is refused.
+    EXPECT_NE(errorOf([&] { probe::GlslProbe p(root.string(), "probes/phong_probe.frag"); }).find("not a stage's"),
               std::string::npos);
 }
 

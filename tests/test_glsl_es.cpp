@@ -19,8 +19,10 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <set>
 #include <string>
 
+#include "voxlab/project_root.h"
 #include "voxlab/renderer.h"
 #include "voxlab/scene.h"
 #include "voxlab/shader.h"
@@ -134,13 +136,19 @@ TEST_F(GlslEs, EveryOtherEntryShaderIsValidInBothDialects) {
     std::vector<Failure> failures;
     int count = 0;
     ShaderLibrary library = ShaderLibrary::forImplementation(projectRoot() + "/reference");
-    const fs::path shaders = fs::path(projectRoot()) / "shaders";
-    for (const auto& entry : fs::recursive_directory_iterator(shaders)) {
-        const std::string ext = entry.path().extension().string();
-        if (ext != ".frag" && ext != ".vert") continue;
-        const std::string name = fs::relative(entry.path(), shaders).string();
-        if (name.rfind("renderers/", 0) == 0) continue;  // above, with their generated parts
-        validateProgram(library, ext == ".vert" ? name : "", ext == ".frag" ? name : "", "shaders/", failures, &count);
+    std::set<std::string> renderers;  // above, with their generated parts
+    for (const auto& renderer : rendererRegistry().all())
+        renderers.insert({renderer->fragmentShader(), renderer->vertexShader()});
+    for (const fs::path folder : frameworkShaderFolders()) {
+        const bool stages = folder == fs::path(stagesRoot());
+        for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+            const std::string ext = entry.path().extension().string();
+            if (ext != ".frag" && ext != ".vert") continue;
+            const std::string name = (stages ? "stages/" : "") + fs::relative(entry.path(), folder).string();
+            if (renderers.count(name)) continue;
+            validateProgram(library, ext == ".vert" ? name : "", ext == ".frag" ? name : "", folder.filename().string() + "/",
+                            failures, &count);
+        }
     }
     EXPECT_TRUE(failures.empty()) << failures.size() << " of " << count << " shaders invalid:\n" << report(failures);
     EXPECT_GT(count, 20);

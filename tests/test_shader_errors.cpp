@@ -81,7 +81,7 @@ TEST_F(GlTest, MissingIncludeIsReportedWithItsIncludingLine) {
     const fs::path root = makeImplementation("mip", "mip.glsl", "\n#include \"voxlab/nope.glsl\"\n");
     const ShaderLibrary lib = ShaderLibrary::forImplementation(root.string());
     try {
-        lib.preprocess("renderers/mip.frag");
+        lib.preprocess("stages/mip/mip.frag");
         FAIL() << "a missing include was accepted";
     } catch (const ShaderError& e) {
         const std::string msg = e.what();
@@ -94,7 +94,7 @@ TEST_F(GlTest, MissingIncludeIsReportedWithItsIncludingLine) {
 TEST(ShaderLibrary, ImplementationRootComesFirstAndEachFileOnce) {
     const fs::path root = makeImplementation("mip", "mip.glsl", "float mip_ray(Ray r) { return 7.0; }\n");
     const ShaderLibrary lib = ShaderLibrary::forImplementation(root.string());
-    const PreprocessedShader s = lib.preprocess("renderers/mip.frag");
+    const PreprocessedShader s = lib.preprocess("stages/mip/mip.frag");
     EXPECT_NE(s.text.find("return 7.0;"), std::string::npos);
     // ray.glsl is included by several files but appears once.
     int count = 0;
@@ -118,7 +118,7 @@ TEST_F(GlTest, ARayValueStagesEntryShaderIsMadeFromTheTemplate) {
     EXPECT_NE(msg.find("undefined_thing"), std::string::npos) << msg;
     const auto generated = rendererRegistry().get("minip").generatedShaders();
     ASSERT_EQ(generated.size(), 1u);
-    const std::string& text = generated.at("renderers/minip.frag");
+    const std::string& text = generated.at("stages/minip/minip.frag");
     EXPECT_EQ(text.rfind("#version 330 core", 0), 0u);
     EXPECT_NE(text.find("#include \"minip/minip.glsl\""), std::string::npos) << text;
     // MinIP's value is the smallest over runs between bricks (voxlab/runs.glsl).
@@ -127,13 +127,13 @@ TEST_F(GlTest, ARayValueStagesEntryShaderIsMadeFromTheTemplate) {
     EXPECT_EQ(text.find("STAGE_NAME"), std::string::npos) << text;
     EXPECT_EQ(text.find("RUN_DEFINES"), std::string::npos) << text;
     // The average needs the whole ray in one call.
-    const std::string average = rendererRegistry().get("average").generatedShaders().at("renderers/average.frag");
+    const std::string average = rendererRegistry().get("average").generatedShaders().at("stages/average/average.frag");
     EXPECT_NE(average.find("#define RAY_VALUE average_ray"), std::string::npos) << average;
     EXPECT_EQ(average.find("RUN_"), std::string::npos) << average;
     ShaderLibrary lib = ShaderLibrary::forImplementation(root.string());
-    lib.addGenerated("renderers/minip.frag", text);
-    EXPECT_EQ(lib.resolve("renderers/minip.frag"), "generated:renderers/minip.frag");
-    const PreprocessedShader s = lib.preprocess("renderers/minip.frag");
+    lib.addGenerated("stages/minip/minip.frag", text);
+    EXPECT_EQ(lib.resolve("stages/minip/minip.frag"), "generated:stages/minip/minip.frag");
+    const PreprocessedShader s = lib.preprocess("stages/minip/minip.frag");
     EXPECT_NE(s.text.find("return undefined_thing;"), std::string::npos);
     fs::remove_all(root);
 }
@@ -194,11 +194,11 @@ TEST_F(GlTest, AnEntryShaderMeansWhatItSaysWhateverTheDriver) {
 
 TEST(ShaderLibrary, LogMappingHandlesMesaAndNvidiaFormats) {
     PreprocessedShader s;
-    s.files = {"renderers/mip.frag", "voxlab/ray.glsl", "mip/mip.glsl"};
+    s.files = {"stages/mip/mip.frag", "voxlab/ray.glsl", "mip/mip.glsl"};
     EXPECT_EQ(s.mapLog("0:200014(9): error: `x' undeclared"), "mip/mip.glsl:14:9: error: `x' undeclared");
     EXPECT_EQ(s.mapLog("0(100003) : error C1008: undefined variable"),
               "voxlab/ray.glsl:3: error C1008: undefined variable");
-    EXPECT_EQ(s.mapLog("0:5(1): error: y"), "renderers/mip.frag:5:1: error: y");
+    EXPECT_EQ(s.mapLog("0:5(1): error: y"), "stages/mip/mip.frag:5:1: error: y");
 }
 
 // The directives and the compiler's log are read by hand-written scans
@@ -240,13 +240,13 @@ TEST(ShaderLibrary, DirectivesAreReadByScansThatMeanWhatTheExpressionsMeant) {
 
 TEST(ShaderLibrary, LogMappingHandlesAngleAndLeavesOtherLinesAlone) {
     PreprocessedShader s;
-    s.files = {"renderers/mip.frag", "voxlab/ray.glsl", "mip/mip.glsl"};
+    s.files = {"stages/mip/mip.frag", "voxlab/ray.glsl", "mip/mip.glsl"};
     EXPECT_EQ(s.mapLog("ERROR: 0:100002: 'x' : undeclared identifier"),
               "voxlab/ray.glsl:2: error: 'x' : undeclared identifier");
-    EXPECT_EQ(s.mapLog("WARNING:0:5:   unused"), "renderers/mip.frag:5: warning: unused");
+    EXPECT_EQ(s.mapLog("WARNING:0:5:   unused"), "stages/mip/mip.frag:5: warning: unused");
     EXPECT_EQ(s.mapLog("0:300001(2): error: y"), "<source 3>:1:2: error: y");
     EXPECT_EQ(s.mapLog("0:5(1): error: y\r"), "0:5(1): error: y\r");  // as std::regex's `.*$` had it
-    EXPECT_EQ(s.mapLog("0:5(1):   \r"), "renderers/mip.frag:5:1: ");
+    EXPECT_EQ(s.mapLog("0:5(1):   \r"), "stages/mip/mip.frag:5:1: ");
     const std::string huge = "0:" + std::string(25, '9') + "(1): error: z";  // std::stol threw out_of_range
     EXPECT_EQ(s.mapLog(huge), huge);
     const std::string longLine = std::string(200000, ' ') + "x";

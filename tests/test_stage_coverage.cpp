@@ -47,6 +47,7 @@
 #include "voxlab/render_engine.h"
 #include "voxlab/renderer.h"
 #include "voxlab/scene.h"
+#include "voxlab/shader.h"
 #include "voxlab/volume.h"
 #include "support/temp_dir.h"
 
@@ -230,7 +231,8 @@ std::string shaderText(const Renderer& r) {
     const auto generated = r.generatedShaders();
     const auto found = generated.find(r.fragmentShader());
     if (found != generated.end()) return found->second;
-    return readText(fs::path(projectRoot()) / "shaders" / r.fragmentShader());
+    // The framework's own entry shader, wherever it lives (a stage's folder).
+    return readText(ShaderLibrary({projectRoot() + "/shaders"}).resolve(r.fragmentShader()));
 }
 
 // The body of `function` in GLSL text (from its "{" to the matching "}").

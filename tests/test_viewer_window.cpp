@@ -186,7 +186,7 @@ TEST_F(ViewerWindow, ABadScriptOrDatasetIsAOneLineError) {
 TEST_F(ViewerWindow, AStudentReleaseComparesWithTheExpectedImage) {
     const fs::path release = dir_ / "release";
     fs::create_directories(release / "assignments");
-    for (const char* item : {"shaders", "datasets", "CMakeLists.txt"})
+    for (const char* item : {"shaders", "framework", "datasets", "CMakeLists.txt"})
         fs::create_symlink(fs::path(VOXLAB_SOURCE_DIR) / item, release / item);
     fs::copy(fs::path(VOXLAB_SOURCE_DIR) / "assignments", release / "assignments", fs::copy_options::recursive);
     const CommandResult expected = runShell(std::string(VOXLAB_BINARY) + " grade --render-expected " +

@@ -2,7 +2,8 @@
 """The framework's modules and the includes between them.
 
 A module is a folder of framework/src/ (the CLI, framework/cli/, is the
-module "cli"). A header framework/include/voxlab/NAME.h belongs to the
+module "cli"; the stage folders, framework/stages/*/, are the module
+"stages"). A header framework/include/voxlab/NAME.h belongs to the
 module whose folder holds NAME.cpp; a header with no such file is assigned
 below (HEADERS). Each module declares the modules it may include
 (DEPENDS, lowest first); a file that includes a header of any other module
@@ -26,6 +27,7 @@ DEPENDS = {
     "render": ["gl", "mesh", "scene", "volume", "image", "io"],  # the engine
     "renderers": ["render", "gl", "mesh", "scene", "volume", "image", "io"],
     "grade": ["renderers", "render", "gl", "mesh", "scene", "volume", "image", "io"],
+    "stages": ["grade", "renderers", "render", "gl", "mesh", "scene", "volume", "image", "io"],
     "window": ["renderers", "render", "gl", "mesh", "scene", "volume", "image", "io"],
     "cli": ["window", "grade", "renderers", "render", "gl", "mesh", "scene", "volume", "image", "io"],
 }
@@ -51,6 +53,8 @@ def module_of_source(project, path):
         return "cli"
     if parts[:2] == ["framework", "src"]:
         return parts[2]
+    if parts[:2] == ["framework", "stages"]:
+        return "stages"
     return None
 
 
@@ -66,7 +70,7 @@ def header_modules(project):
 
 
 def files(project):
-    for top in ("framework/src", "framework/cli", "framework/include/voxlab"):
+    for top in ("framework/src", "framework/cli", "framework/stages", "framework/include/voxlab"):
         for root, _, names in os.walk(os.path.join(project, top)):
             for n in sorted(names):
                 if n.endswith((".cpp", ".h")):

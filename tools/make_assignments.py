@@ -11,7 +11,7 @@ to assignments/ path for path and replaces each such block with a loud stub:
   C++   throw NotImplemented("function"); (framework/include/voxlab/error.h).
 
 Blocks between `// BEGIN WORKED EXAMPLE` and `// END WORKED EXAMPLE` are
-kept (the slicer is a worked example). Grading scenes marked "hidden" in a
+kept (a worked example the handout walks through). Grading scenes marked "hidden" in a
 stage's grading.json are left out of its generated manifest, and their scene
 files are not copied: they are graded but never shipped. A stage's
 mutants.json (its mutant suite, which holds solution text) is never copied.

@@ -88,7 +88,7 @@ tools/setup.sh                 # installs what is missing, builds, opens the vie
   (S again) show your image against the expected one, the scene as graded.
 - **Check it** the way it will be graded: `build/bin/voxlab check --stage mip`, then open
   `voxlab-check/index.html`. How grading works: `docs/grading.md`.
-- **C++ stages** (five: `texslice2d`, `texslice3d`, `splat`, `shearwarp`, `marching_cubes`) are compiled into `voxlab`: rebuild with
+- **C++ stages** (the folders of `assignments/` with a `.cpp` file) are compiled into `voxlab`: rebuild with
   `cmake --build build` after editing them (`voxlab check` compiles them itself).
 - The framework's full guide (conventions, scene files, datasets, renderers, the viewer):
   `README_framework.md`.

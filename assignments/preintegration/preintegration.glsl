@@ -22,7 +22,7 @@
 //     C  += (1 - A) a_k c_k,   A += (1 - A) a_k
 // It returns vec4(C, A): the colour premultiplied by opacity, and the
 // segment's opacity. The framework fills the table with it (one texel per
-// pair of values; see shaders/precompute/preintegration_table.frag), with
+// pair of values; see framework/stages/preintegration/preintegration_table.frag), with
 // n at least the number of table texels and of transfer-function entries
 // between sf and sb, so no feature of the function falls between two
 // sub-segments.

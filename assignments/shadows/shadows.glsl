@@ -22,7 +22,7 @@
 // per voxel of a light volume (`shadow_resolution`, 64 by default, voxels
 // on each axis at most), a 3D texture
 // of T (Behrens and Ratering 1998 build the same thing by slicing; Levoy
-// 1988's two-pass idea): see shaders/precompute/light_volume.frag. It
+// 1988's two-pass idea): see framework/stages/shadows/light_volume.frag. It
 // recomputes it when the transfer function, the light direction (which
 // turns with the camera) or the volume changes. The composite renderer,
 // with `shadows` on, then multiplies each lit sample's colour by T read

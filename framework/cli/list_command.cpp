@@ -1,17 +1,27 @@
-// voxlab list: the registered renderers and their declared parameters.
+// voxlab list: the registered renderers and their declared parameters, or
+// (--checks) the function checks each stage folder registers.
 #include <cstdio>
 #include <iostream>
 
 #include "commands.h"
+#include "voxlab/function_checks.h"
 #include "voxlab/renderer.h"
 
 namespace voxlab::cli {
 
 int listCommand(int argc, char** argv) {
-    const std::vector<OptionSpec> specs = {{"help", "", "show this help"}};
+    const std::vector<OptionSpec> specs = {{"help", "", "show this help"},
+                                           {"checks", "", "list the function checks instead (name, stage, what)"}};
     const Args args(specs, argc, argv, 2, "list");
     if (args.has("help")) {
-        std::cout << "usage: voxlab list\n\nNames every renderer with a one-line description and its parameters.\n";
+        std::cout << "usage: voxlab list [--checks]\n\nNames every renderer with a one-line description and its "
+                     "parameters;\nwith --checks, every function check a manifest may name, its stage and what it "
+                     "runs.\n";
+        return 0;
+    }
+    if (args.has("checks")) {
+        for (const FunctionCheckInfo& c : functionChecks())
+            std::printf("%-28s %-16s %s\n", c.name.c_str(), c.stage.c_str(), c.description.c_str());
         return 0;
     }
     for (const auto& r : rendererRegistry().all()) {

@@ -14,10 +14,12 @@
 #ifndef VOXLAB_STAGE_SHEARWARP_GLSL
 #define VOXLAB_STAGE_SHEARWARP_GLSL
 
-// What the pixel holds after this slice: `sample` laid under `accumulated`.
-vec4 shearwarp_composite(vec4 accumulated, vec4 sample) {
+// What the pixel holds after this slice: the slice's sample `slice` laid
+// under `accumulated` (GLSL ES reserves the word `sample`: the page's
+// shaders could not use it).
+vec4 shearwarp_composite(vec4 accumulated, vec4 slice) {
     // BEGIN SOLUTION
-    return accumulated + (1.0 - accumulated.a) * sample;
+    return accumulated + (1.0 - accumulated.a) * slice;
     // END SOLUTION
 }
 

@@ -16,7 +16,7 @@
 //     a = 1 - (1 - alpha)^(L / u_min_spacing),
 // the same opacity correction ray casting applies for a step.
 //
-// The framework (shaders/renderers/splat.frag) finds r for each pixel of the
+// The framework (framework/stages/splat/splat.frag) finds r for each pixel of the
 // splat, classifies the voxel's value with the transfer function, calls the
 // two functions below, and blends the splat over what is behind it.
 #ifndef VOXLAB_STAGE_SPLAT_GLSL

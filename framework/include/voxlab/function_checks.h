@@ -15,7 +15,9 @@
 // "not_implemented" is true when some call reached a GLSL stub's
 // not_implemented(). A NaN output is stored as JSON null (and fails).
 //
-// GLSL functions run in small probe fragment shaders (shaders/probes/), one
+// Each stage's checks live in its folder (framework/stages/STAGE/check.cpp,
+// voxlab/function_check_support.h). GLSL functions run in small probe
+// fragment shaders beside them (framework/stages/STAGE/*_probe.frag), one
 // case per pixel, through ShaderLibrary::forImplementation(root); they need
 // a current GL context. C++ functions are called through cppStages(), so a
 // loaded stage library is what gets checked.
@@ -54,8 +56,8 @@ struct CheckComparison {
 };
 
 // Compares a submission's outputs (`actual`) with the expected (reference)
-// outputs of the same check; the tolerances are stated per check in
-// function_checks.cpp. Throws voxlab::Error when the two were not run on the
+// outputs of the same check; the tolerances are stated per check in the
+// stage's check.cpp. Throws voxlab::Error when the two were not run on the
 // same inputs (a different check, or expected outputs from another version).
 CheckComparison compareFunctionCheck(const std::string& name, const nlohmann::json& expected,
                                      const nlohmann::json& actual);

@@ -13,9 +13,19 @@
 //      folder outside the checkout).
 // Nothing here depends on the scene or the renderer: every module may ask.
 #include <string>
+#include <vector>
 
 namespace voxlab {
 
 std::string projectRoot();
+
+// Where a stage's framework side lives: <root>/framework/stages/<stage>/
+// holds its renderer, its function check and its own shaders (entry, probe,
+// precomputation passes). Shaders there are named "stages/<stage>/FILE".
+std::string stagesRoot();
+// The folders of the framework's own shaders: shaders/ (the shared GLSL and
+// the engine's passes) and stagesRoot(). What a worker may read, what the
+// expected outputs depend on, what is checked for both GLSL dialects.
+std::vector<std::string> frameworkShaderFolders();
 
 }  // namespace voxlab

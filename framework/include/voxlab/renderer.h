@@ -2,13 +2,14 @@
 //
 // A renderer is a small class that names itself, declares its parameters and
 // points at its GLSL entry shader; the RenderEngine does the rest (textures,
-// camera uniforms, framebuffer). The entry shader (shaders/renderers/ID.frag)
-// includes the framework's GLSL libraries and the stage's implementation
+// camera uniforms, framebuffer). The entry shader (framework/stages/STAGE/,
+// by default STAGE/ID.frag) includes the framework's GLSL libraries and the stage's implementation
 // (e.g. "mip/mip.glsl"), which is looked up first in the implementation root:
 // reference/ for the reference solution, or a student's submission folder.
 //
-// Renderers are registered explicitly, in one list (renderer_registry.cpp),
-// so no linker can drop one and the order in `voxlab list` is deliberate.
+// Each stage folder registers its renderers (VOXLAB_RENDERERS below); the
+// stages are listed once, in framework/stages/stages.cmake, so no linker can
+// drop one and the order in `voxlab list` is deliberate.
 #pragma once
 
 #include <map>
@@ -153,8 +154,9 @@ public:
     // The parameters for a volume whose values span `dataRange`: data-unit
     // parameters get their range and default in data units.
     std::vector<ParameterSpec> parametersFor(glm::dvec2 dataRange) const;
-    // The entry fragment shader, found on the shader search path.
-    virtual std::string fragmentShader() const { return "renderers/" + id() + ".frag"; }
+    // The entry fragment shader, found on the shader search path: by
+    // default the stage folder's own, framework/stages/ID/ID.frag.
+    virtual std::string fragmentShader() const { return "stages/" + id() + "/" + id() + ".frag"; }
     // How the ray profile reads the pixels of this renderer's rays
     // (voxlab/ray_profile.h), and what it stops at, from the renderer's own
     // parameters (read here, where they are declared).
@@ -243,7 +245,15 @@ private:
     std::vector<std::unique_ptr<Renderer>> renderers_;
 };
 
-// The built-in renderers, in teaching order.
+// The built-in renderers, in teaching order: those of each stage folder
+// (framework/stages/stages.cmake), which adds them in its renderer.cpp:
+//   VOXLAB_RENDERERS(mip) { registry.add<MipRenderer>(); }
 const RendererRegistry& rendererRegistry();
+
+#define VOXLAB_RENDERERS(stage)                                           \
+    namespace voxlab {                                                    \
+    void stageRenderers_##stage(RendererRegistry& registry);              \
+    }                                                                     \
+    void voxlab::stageRenderers_##stage(voxlab::RendererRegistry& registry)
 
 }  // namespace voxlab

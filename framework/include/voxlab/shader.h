@@ -90,7 +90,10 @@ public:
     void addGenerated(const std::string& name, const std::string& text);
     // Absolute path of `name`, first match on the search path; throws
     // ShaderError when absent, when `name` is absolute or has a ".." part,
-    // or when the file found lies outside its folder through a link.
+    // or when the file found lies outside its folder through a link. A name
+    // "stages/STAGE/FILE" is a stage's framework shader (its entry, probe or
+    // precomputation pass) and is found under stagesRoot() alone: no
+    // implementation can bring its own.
     std::string resolve(const std::string& name, const std::string& includedFrom = "") const;
     PreprocessedShader preprocess(const std::string& name, const ShaderConstants& constants = {}) const;
     GlslDialect dialect() const { return dialect_; }

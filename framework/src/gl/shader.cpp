@@ -372,6 +372,19 @@ std::string confinedPath(const std::string& dir, const std::string& path) {
     return real.string().compare(0, prefix.size(), prefix) == 0 ? path : "";
 }
 
+// Names that only the framework's stage folders answer (voxlab/project_root.h).
+const std::string kStagesPrefix = "stages/";
+
+// `folder`/`relative`, which must be a file inside `folder` (links resolved).
+std::string resolveIn(const std::string& folder, const std::string& relative, const std::string& name,
+                      const std::string& where) {
+    const std::string path = folder + "/" + relative;
+    if (!isFile(path)) throw ShaderError(where + "shader '" + name + "' not found (searched: " + displayPath(folder) + ")");
+    if (confinedPath(folder, path).empty())
+        throw ShaderError(where + "shader '" + name + "' leads outside " + displayPath(folder) + " (a link?)");
+    return path;
+}
+
 }  // namespace
 
 void ShaderLibrary::addGenerated(const std::string& name, const std::string& text) {
@@ -388,20 +401,15 @@ std::string ShaderLibrary::resolve(const std::string& name, const std::string& i
     const std::string where = includedFrom.empty() ? "" : includedFrom + ": ";
     checkIncludeName(name, where);
     if (generated_.count("generated:" + name)) return "generated:" + name;
+    if (name.rfind(kStagesPrefix, 0) == 0) return resolveIn(stagesRoot(), name.substr(kStagesPrefix.size()), name, where);
     // A stage the first folder (the implementation) has is its alone: an
     // empty or incomplete stage folder does not borrow a later folder's files.
     const std::string top = name.substr(0, name.find('/'));
     const bool owned = name.find('/') != std::string::npos && !searchPath_.empty() &&
                        std::filesystem::is_directory(searchPath_.front() + "/" + top);
     const std::size_t folders = owned ? 1 : searchPath_.size();
-    for (std::size_t i = 0; i < folders; ++i) {
-        const std::string path = searchPath_[i] + "/" + name;
-        if (!isFile(path)) continue;
-        if (confinedPath(searchPath_[i], path).empty())
-            throw ShaderError(where + "shader '" + name + "' leads outside " + displayPath(searchPath_[i]) +
-                              " (a link?)");
-        return path;
-    }
+    for (std::size_t i = 0; i < folders; ++i)
+        if (isFile(searchPath_[i] + "/" + name)) return resolveIn(searchPath_[i], name, name, where);
     std::string searched;
     for (std::size_t i = 0; i < folders; ++i) searched += (searched.empty() ? "" : ", ") + displayPath(searchPath_[i]);
     throw ShaderError(where + "shader '" + name + "' not found (searched: " + searched + ")");

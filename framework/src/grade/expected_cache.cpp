@@ -19,6 +19,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "voxlab/project_root.h"
 #include "voxlab/scene.h"
 
 namespace voxlab::expected_cache {
@@ -118,7 +119,7 @@ std::string key(const std::string& worker, const std::string& referenceRoot) {
     Fnv128 hash;
     addFile(hash, worker.empty() ? fs::path("/proc/self/exe") : fs::path(worker), "worker");
     const fs::path project = projectRoot();
-    for (const fs::path& tree : {project / "shaders", project / "datasets", fs::path(referenceRoot),
+    for (const fs::path& tree : {project / "shaders", fs::path(stagesRoot()), project / "datasets", fs::path(referenceRoot),
                                  project / "framework" / "include", project / "framework" / "stage_library"})
         addTree(hash, tree);
     return hash.hex();

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "voxlab/project_root.h"
 #include "voxlab/renderer.h"
 
 namespace voxlab::grading {
@@ -184,7 +185,7 @@ std::vector<std::string> requiredStages(const std::string& referenceRoot, const 
     return found;
 }
 
-std::vector<std::string> frameworkStages(const std::string& shadersRoot, const std::string& referenceRoot) {
+std::vector<std::string> frameworkStages(const std::string& referenceRoot) {
     const std::vector<std::string> stages = stageNames(referenceRoot);
     std::set<std::string> found;
     auto addIncluded = [&](const std::string& glsl) {
@@ -194,11 +195,18 @@ std::vector<std::string> frameworkStages(const std::string& shadersRoot, const s
         }
     };
     std::error_code ec;
-    for (const char* part : {"voxlab", "renderers", "precompute"})
-        for (const auto& e : fs::directory_iterator(fs::path(shadersRoot) / part, ec))
+    for (const char* part : {"voxlab", "renderers"})
+        for (const auto& e : fs::directory_iterator(fs::path(projectRoot()) / "shaders" / part, ec))
             if (e.is_regular_file(ec)) addIncluded(readText(e.path()));
+    // The stages' entry shaders and precomputation passes (their probes each
+    // include their own stage only).
+    for (const auto& e : fs::recursive_directory_iterator(stagesRoot(), ec)) {
+        const std::string file = e.path().filename().string();
+        const bool probe = file.size() > 11 && file.compare(file.size() - 11, 11, "_probe.frag") == 0;
+        if (e.is_regular_file(ec) && isGlsl(e.path()) && !probe) addIncluded(readText(e.path()));
+    }
     // The shaders renderers make from a template, which names its stage by a
-    // placeholder (ray_value.frag.in: minip, average, attenuated_mip).
+    // placeholder (ray_value.frag.in).
     for (const auto& renderer : rendererRegistry().all())
         for (const auto& [name, glsl] : renderer->generatedShaders()) addIncluded(glsl);
     return {found.begin(), found.end()};

@@ -22,11 +22,11 @@ namespace voxlab::grading {
 // The stages `stage` requires (its manifest's "requires"), and theirs.
 std::vector<std::string> requiredStages(const std::string& referenceRoot, const std::string& stage);
 
-// The stages whose GLSL the framework's own shaders include (shaders/
-// voxlab, renderers and precompute; not the probes, which each include
-// their own stage), found by reading those files and the shaders renderers
-// make from templates (the ray-value renderers' minip, average, ...).
-std::vector<std::string> frameworkStages(const std::string& shadersRoot, const std::string& referenceRoot);
+// The stages whose GLSL the framework's own shaders include (shaders/voxlab
+// and renderers, the stage folders' entry shaders and precomputation
+// passes; not the probes, which each include their own stage), found by
+// reading those files and the shaders renderers make from templates.
+std::vector<std::string> frameworkStages(const std::string& referenceRoot);
 
 // Checks the graded stage's GLSL files in `impl`/`stage` against the
 // boundary above; `allowed` are the stages it may use besides itself. The

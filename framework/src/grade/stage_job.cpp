@@ -36,6 +36,7 @@
 #include "voxlab/atomic_file.h"
 #include "voxlab/child_process.h"
 #include "voxlab/error.h"
+#include "voxlab/project_root.h"
 #include "voxlab/scene.h"
 #include "voxlab/stage_library.h"
 
@@ -129,7 +130,7 @@ void snapshotGradedStage(const StageRun& run, const StageManifest& manifest, con
 // stage may use of them).
 void snapshotOtherStages(const std::string& referenceRoot, const std::string& stage, const fs::path& impl) {
     std::vector<std::string> others = requiredStages(referenceRoot, stage);
-    for (const std::string& s : frameworkStages(projectRoot() + "/shaders", referenceRoot))
+    for (const std::string& s : frameworkStages(referenceRoot))
         if (s != stage && !std::count(others.begin(), others.end(), s)) others.push_back(s);
     std::error_code ec;
     for (const std::string& other : others) {
@@ -262,7 +263,8 @@ std::vector<std::string> cppSources(const StageRun& run, const StageManifest& ma
 }
 
 std::vector<std::string> dataFolders() {
-    std::vector<std::string> folders = {projectRoot() + "/shaders", projectRoot() + "/datasets"};
+    std::vector<std::string> folders = frameworkShaderFolders();
+    folders.push_back(projectRoot() + "/datasets");
     const char* path = std::getenv("VOXLAB_DATA_PATH");
     for (std::string rest = path ? path : ""; !rest.empty();) {
         const std::size_t colon = rest.find(':');

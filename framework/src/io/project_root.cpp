@@ -49,4 +49,8 @@ std::string projectRoot() {
     return found;
 }
 
+std::string stagesRoot() { return projectRoot() + "/framework/stages"; }
+
+std::vector<std::string> frameworkShaderFolders() { return {projectRoot() + "/shaders", stagesRoot()}; }
+
 }  // namespace voxlab

@@ -1,8 +1,23 @@
-// voxlab renderer "tf2d": direct volume rendering classified by the 2D
+// voxlab stage tf2d: renderer "tf2d": direct volume rendering classified by the 2D
 // transfer function over (value, gradient magnitude).
 #include "voxlab/renderers.h"
 
 namespace voxlab {
+
+class Tf2dRenderer final : public Renderer {
+public:
+    BrickCombine brickCombine(const ParameterValues&) const override { return BrickCombine::Over; }
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    bool needsTransferFunction2D() const override { return true; }
+    bool usesTransferFunction() const override { return false; }
+    EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
+    ProfileModel profileModel() const override { return ProfileModel::Composite; }
+    ProfileSettings profileSettings(const ParameterValues& values) const override {
+        return compositingProfileSettings(values);
+    }
+};
 
 std::string Tf2dRenderer::id() const { return "tf2d"; }
 
@@ -25,3 +40,5 @@ EmptySpaceRule Tf2dRenderer::emptySpaceRule(const ParameterValues& values) const
 }
 
 }  // namespace voxlab
+
+VOXLAB_RENDERERS(tf2d) { registry.add<voxlab::Tf2dRenderer>(); }

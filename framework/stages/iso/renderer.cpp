@@ -1,7 +1,20 @@
-// voxlab renderer "iso": isosurface ray casting with bisection refinement.
+// voxlab stage iso: renderer "iso": isosurface ray casting with bisection refinement.
 #include "voxlab/renderers.h"
 
 namespace voxlab {
+
+class IsoRenderer final : public Renderer {
+public:
+    BrickCombine brickCombine(const ParameterValues&) const override { return BrickCombine::FirstHit; }
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
+    ProfileModel profileModel() const override { return ProfileModel::Isosurface; }
+    ProfileSettings profileSettings(const ParameterValues& values) const override;
+    bool usesTransferFunction() const override { return false; }
+};
+
 namespace {
 constexpr const char* kIsovalue = "isovalue";
 }
@@ -36,3 +49,5 @@ EmptySpaceRule IsoRenderer::emptySpaceRule(const ParameterValues& values) const 
 ProfileSettings IsoRenderer::profileSettings(const ParameterValues& values) const { return {values.at(kIsovalue)}; }
 
 }  // namespace voxlab
+
+VOXLAB_RENDERERS(iso) { registry.add<voxlab::IsoRenderer>(); }

@@ -1,7 +1,8 @@
 // voxlab (internal): running GLSL stage functions on many inputs at once,
 // for the function checks (voxlab/function_checks.h).
 //
-// A probe is a fragment shader under shaders/probes/ that includes a stage
+// A probe is a fragment shader in a stage's folder (framework/stages/STAGE/
+// STAGE_probe.frag, named "stages/STAGE/...") that includes the stage
 // and calls its function once per pixel. Each case is one pixel: its inputs
 // are texels of up to kProbeInputs RGBA32F textures (u_probe_input[k],
 // read with PROBE_INPUT(k) from probes/probe.glsl), and the probe writes
@@ -43,8 +44,10 @@ struct ProbeVolume {
 
 class GlslProbe {
 public:
-    // Compiles shaders/probes/<fragmentName> (found on the implementation's
-    // search path) with voxlab/fullscreen.vert. Throws ShaderError.
+    // Compiles `fragmentName`, a stage's probe ("stages/STAGE/FILE", which
+    // only the framework's stage folders answer; anything else is an Error),
+    // against the implementation's stages, with voxlab/fullscreen.vert.
+    // Throws ShaderError.
     GlslProbe(const std::string& implementationRoot, const std::string& fragmentName,
               const ShaderConstants& constants = {});
     ~GlslProbe();

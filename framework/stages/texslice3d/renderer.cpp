@@ -1,4 +1,4 @@
-// voxlab renderer "texslice3d": object-order volume rendering with
+// voxlab stage texslice3d: renderer "texslice3d": object-order volume rendering with
 // view-aligned slices through the 3D texture.
 #include <cmath>
 
@@ -10,6 +10,16 @@
 #include "voxlab/volume.h"
 
 namespace voxlab {
+
+class Texslice3dRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    bool objectOrder() const override { return true; }
+    bool needsTransferFunction() const override { return true; }
+    void draw(DrawContext& context, const ParameterValues& values) const override;
+};
 
 std::string Texslice3dRenderer::id() const { return "texslice3d"; }
 
@@ -45,3 +55,5 @@ void Texslice3dRenderer::draw(DrawContext& ctx, const ParameterValues& values) c
 }
 
 }  // namespace voxlab
+
+VOXLAB_RENDERERS(texslice3d) { registry.add<voxlab::Texslice3dRenderer>(); }

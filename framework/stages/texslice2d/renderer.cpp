@@ -1,4 +1,4 @@
-// voxlab renderer "texslice2d": object-order volume rendering with three
+// voxlab stage texslice2d: renderer "texslice2d": object-order volume rendering with three
 // stacks of axis-aligned 2D slices (the first GPU volume renderers).
 #include <cmath>
 
@@ -10,6 +10,18 @@
 #include "voxlab/volume.h"
 
 namespace voxlab {
+
+// Object-order renderers: they draw proxy geometry (draw()) instead of
+// casting rays.
+class Texslice2dRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    bool objectOrder() const override { return true; }
+    bool needsTransferFunction() const override { return true; }
+    void draw(DrawContext& context, const ParameterValues& values) const override;
+};
 
 namespace {
 constexpr int kStackUnit = 4;  // texture unit of the slice stack
@@ -56,3 +68,5 @@ void Texslice2dRenderer::draw(DrawContext& ctx, const ParameterValues& values) c
 }
 
 }  // namespace voxlab
+
+VOXLAB_RENDERERS(texslice2d) { registry.add<voxlab::Texslice2dRenderer>(); }

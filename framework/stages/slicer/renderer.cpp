@@ -1,8 +1,16 @@
-// voxlab renderer "slicer": one plane through the volume, perpendicular to
+// voxlab stage slicer: renderer "slicer": one plane through the volume, perpendicular to
 // the view, shown in grey (window) or through the transfer function.
 #include "voxlab/renderers.h"
 
 namespace voxlab {
+
+class SlicerRenderer final : public Renderer {
+public:
+    BrickCombine brickCombine(const ParameterValues&) const override { return BrickCombine::FirstHit; }
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+};
 
 std::string SlicerRenderer::id() const { return "slicer"; }
 
@@ -22,3 +30,5 @@ std::vector<ParameterSpec> SlicerRenderer::parameters() const {
 }
 
 }  // namespace voxlab
+
+VOXLAB_RENDERERS(slicer) { registry.add<voxlab::SlicerRenderer>(); }

@@ -1,4 +1,4 @@
-// voxlab renderer "splat": splatting (splatting.h), object order: every
+// voxlab stage splat: renderer "splat": splatting (splatting.h), object order: every
 // voxel the transfer function shows, thrown at the image as a Gaussian
 // footprint, back to front in the order of the splat stage's walk.
 #include <cstring>
@@ -11,6 +11,27 @@
 #include "voxlab/volume.h"
 
 namespace voxlab {
+
+// Splatting (splatting.h): every voxel the transfer function shows, drawn as
+// a Gaussian footprint (a point sprite), back to front in the splat stage's
+// order. The points are kept while the volume, the transfer function and
+// the walk stay the same.
+class SplatRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    bool objectOrder() const override { return true; }
+    bool needsTransferFunction() const override { return true; }
+    std::string vertexShader() const override { return "stages/splat/splat.vert"; }
+    void draw(DrawContext& context, const ParameterValues& values) const override;
+
+private:
+    struct Cached;
+    std::shared_ptr<const Cached> pointsFor(const Volume& volume, const TransferFunction& tf, glm::dvec3 view) const;
+    mutable std::shared_ptr<const Cached> cached_;
+    mutable std::mutex mutex_;
+};
 
 namespace {
 constexpr double kCutoff = 3.0;  // footprints end at 3 standard deviations (1.1% of the matter left out)
@@ -66,3 +87,5 @@ void SplatRenderer::draw(DrawContext& ctx, const ParameterValues& values) const 
 }
 
 }  // namespace voxlab
+
+VOXLAB_RENDERERS(splat) { registry.add<voxlab::SplatRenderer>(); }

@@ -1,4 +1,4 @@
-// voxlab renderer "shearwarp": shear-warp volume rendering (shear_warp.h),
+// voxlab stage shearwarp: renderer "shearwarp": shear-warp volume rendering (shear_warp.h),
 // orthographic views. The shearwarp stage factors the view (C++); the slices
 // along the principal axis are composited front to back into an
 // intermediate image, one full-screen pass each, two float images taking
@@ -14,6 +14,20 @@
 #include "voxlab/volume.h"
 
 namespace voxlab {
+
+// Shear-warp (shear_warp.h), orthographic views: the shearwarp stage's
+// factorisation, one full-screen pass per slice into an intermediate image
+// (two float targets taking turns), one warp pass onto the screen.
+class ShearWarpRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    bool objectOrder() const override { return true; }
+    bool needsTransferFunction() const override { return true; }
+    std::string vertexShader() const override { return "voxlab/fullscreen.vert"; }
+    void checkScene(const Scene& scene, const ParameterValues& values) const override;
+    void draw(DrawContext& context, const ParameterValues& values) const override;
+};
 
 namespace {
 constexpr int kStackUnit = 4, kAccumulatedUnit = 5, kIntermediateUnit = 6;
@@ -41,7 +55,7 @@ void ShearWarpRenderer::draw(DrawContext& ctx, const ParameterValues&) const {
     // Along a ray the slices are spacing_c / |forward_c| world units apart.
     const double between = v.spacing()[c] / std::max(std::abs(ctx.camera().forward[c]), 1e-9) / v.minSpacing();
     ctx.bindSliceStack(c, kStackUnit);
-    const ShaderProgram& slice = ctx.useFullScreenProgram("renderers/shearwarp_slice.frag");
+    const ShaderProgram& slice = ctx.useFullScreenProgram("stages/shearwarp/shearwarp_slice.frag");
     slice.set("u_stack", kStackUnit);
     slice.set("u_accumulated", kAccumulatedUnit);
     slice.set("u_stack_axis", c);
@@ -76,3 +90,5 @@ void ShearWarpRenderer::draw(DrawContext& ctx, const ParameterValues&) const {
 }
 
 }  // namespace voxlab
+
+VOXLAB_RENDERERS(shearwarp) { registry.add<voxlab::ShearWarpRenderer>(); }

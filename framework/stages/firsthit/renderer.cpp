@@ -1,7 +1,19 @@
-// voxlab renderer "firsthit": closest-vessel projection.
+// voxlab stage firsthit: renderer "firsthit": closest-vessel projection.
 #include "voxlab/renderers.h"
 
 namespace voxlab {
+
+class FirstHitRenderer final : public Renderer {
+public:
+    BrickCombine brickCombine(const ParameterValues&) const override { return BrickCombine::FirstHit; }
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
+    ProfileModel profileModel() const override { return ProfileModel::FirstHit; }
+    ProfileSettings profileSettings(const ParameterValues& values) const override;
+};
+
 namespace {
 constexpr const char* kThreshold = "threshold";
 }
@@ -30,3 +42,5 @@ ProfileSettings FirstHitRenderer::profileSettings(const ParameterValues& values)
 }
 
 }  // namespace voxlab
+
+VOXLAB_RENDERERS(firsthit) { registry.add<voxlab::FirstHitRenderer>(); }

@@ -28,14 +28,14 @@ void main() {
     int a = (u_stack_axis + 1) % 3, b = (u_stack_axis + 2) % 3;
     vec2 size = vec2(u_volume_dims[a], u_volume_dims[b]);
     vec2 x = gl_FragCoord.xy - u_shear * (float(u_slice) + 0.5) - u_offset;
-    vec4 sample = vec4(0.0);
+    vec4 slice = vec4(0.0);  // (GLSL ES reserves the word `sample`)
     if (all(greaterThanEqual(x, vec2(0.0))) && all(lessThan(x, size))) {
         float value = u_interpolation == 0 ? texelFetch(u_stack, ivec3(ivec2(floor(x)), u_slice), 0).r
                                            : filtered(u_stack, vec3(x / size, float(u_slice))).r;
         vec4 c = transfer_function(value);
         float alpha = opacity_correction(c.a, u_slice_units);
-        sample = vec4(c.rgb * alpha, alpha);
+        slice = vec4(c.rgb * alpha, alpha);
     }
-    vec4 composited = shearwarp_composite(accumulated, sample);  // before the flag is read: a stub sets it
+    vec4 composited = shearwarp_composite(accumulated, slice);  // before the flag is read: a stub sets it
     frag_color = voxlab_not_implemented ? not_implemented_pattern() : composited;
 }

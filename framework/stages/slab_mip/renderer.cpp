@@ -1,10 +1,19 @@
-// voxlab renderer "slab_mip": thin-slab maximum intensity projection.
+// voxlab stage slab_mip: renderer "slab_mip": thin-slab maximum intensity projection.
 #include "voxlab/renderers.h"
 
 #include "voxlab/camera.h"
 #include "voxlab/volume.h"
 
 namespace voxlab {
+
+class SlabMipRenderer final : public Renderer {
+public:
+    BrickCombine brickCombine(const ParameterValues&) const override { return BrickCombine::Largest; }
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    ProfileModel profileModel() const override { return ProfileModel::Maximum; }
+};
 
 std::string SlabMipRenderer::id() const { return "slab_mip"; }
 
@@ -21,3 +30,5 @@ std::vector<ParameterSpec> SlabMipRenderer::parameters() const {
 }
 
 }  // namespace voxlab
+
+VOXLAB_RENDERERS(slab_mip) { registry.add<voxlab::SlabMipRenderer>(); }

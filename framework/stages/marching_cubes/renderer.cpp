@@ -1,4 +1,4 @@
-// voxlab renderer "mesh": the isosurface as triangles, by marching cubes
+// voxlab stage marching_cubes: renderer "mesh": the isosurface as triangles, by marching cubes
 // (marching_cubes.h), shaded as iso shades its surface so that the two can
 // be held against each other (docs/object_order.md).
 #include "voxlab/marching_cubes.h"
@@ -8,6 +8,27 @@
 #include "voxlab/volume.h"
 
 namespace voxlab {
+
+// The isosurface as a triangle mesh, by marching cubes on the CPU
+// (marching_cubes.h; the marching_cubes stage), drawn with a depth test.
+// The mesh is kept while the volume, the isovalue and the stage's
+// functions stay the same.
+class MeshRenderer final : public Renderer {
+public:
+    std::string id() const override;
+    std::string description() const override;
+    std::string fragmentShader() const override { return "stages/marching_cubes/mesh.frag"; }
+    std::vector<ParameterSpec> parameters() const override;
+    bool objectOrder() const override { return true; }
+    bool usesTransferFunction() const override { return false; }
+    void draw(DrawContext& context, const ParameterValues& values) const override;
+
+private:
+    struct Cached;
+    std::shared_ptr<const Cached> meshFor(const Volume& volume, double isovalue) const;
+    mutable std::shared_ptr<const Cached> cached_;
+    mutable std::mutex mutex_;
+};
 
 struct MeshRenderer::Cached {
     // What the mesh was made from: the volume's data (address, size, shape),
@@ -81,3 +102,5 @@ void MeshRenderer::draw(DrawContext& ctx, const ParameterValues& values) const {
 }
 
 }  // namespace voxlab
+
+VOXLAB_RENDERERS(marching_cubes) { registry.add<voxlab::MeshRenderer>(); }

@@ -1,4 +1,4 @@
-// voxlab renderer "composite": direct volume rendering (emission-absorption)
+// voxlab stage composite: renderer "composite": direct volume rendering (emission-absorption)
 // with the 1D transfer function.
 #include "voxlab/renderers.h"
 
@@ -9,6 +9,29 @@
 #include "voxlab/volume.h"
 
 namespace voxlab {
+
+// The pre-integration table's size, texels on each axis (the preintegration
+// stage's PREINTEGRATION_TABLE_SIZE).
+constexpr int kPreintegrationTableSize = 256;
+// The light volume of the shadows stage: the volume's dimensions, at most
+// `resolution` voxels on each axis (composite's `shadow_resolution`).
+
+class CompositeRenderer final : public Renderer {
+public:
+    BrickCombine brickCombine(const ParameterValues& values) const override;
+    std::string id() const override;
+    std::string description() const override;
+    std::vector<ParameterSpec> parameters() const override;
+    bool needsTransferFunction() const override { return true; }
+    EmptySpaceRule emptySpaceRule(const ParameterValues& values) const override;
+    ProfileModel profileModel() const override { return ProfileModel::Composite; }
+    ProfileSettings profileSettings(const ParameterValues& values) const override {
+        return compositingProfileSettings(values);
+    }
+    std::vector<Precomputation> precomputations(const Scene& scene, const Volume& volume,
+                                                const ParameterValues& values) const override;
+    void checkScene(const Scene& scene, const ParameterValues& values) const override;
+};
 
 std::string CompositeRenderer::id() const { return "composite"; }
 
@@ -55,9 +78,11 @@ std::vector<ParameterSpec> CompositeRenderer::parameters() const {
     return p;
 }
 
+namespace {
+// The light volume of the shadows stage: the volume's dimensions, at most
+// `resolution` voxels on each axis (`shadow_resolution`).
 glm::ivec3 lightVolumeSize(glm::ivec3 dims, int resolution) { return glm::min(dims, glm::ivec3(resolution)); }
 
-namespace {
 bool on(const ParameterValues& values, const char* name) {
     const auto it = values.find(name);
     return it != values.end() && it->second != 0.0;
@@ -101,7 +126,7 @@ std::vector<Precomputation> CompositeRenderer::precomputations(const Scene& scen
                                                                const ParameterValues& values) const {
     std::vector<Precomputation> list;
     if (on(values, "preintegrated"))
-        list.push_back({"u_preintegration_table", "precompute/preintegration_table.frag",
+        list.push_back({"u_preintegration_table", "stages/preintegration/preintegration_table.frag",
                         glm::ivec3(kPreintegrationTableSize, kPreintegrationTableSize, 1), 4,
                         "step=" + std::to_string(scene.step)});
     if (on(values, "shadows")) {
@@ -112,9 +137,11 @@ std::vector<Precomputation> CompositeRenderer::precomputations(const Scene& scen
         std::snprintf(key, sizeof key, "f=%.7g,%.7g,%.7g r=%.7g,%.7g,%.7g d=%.7g,%.7g,%.7g light=%.7g,%.7g",
                       cam.forward.x, cam.forward.y, cam.forward.z, cam.right.x, cam.right.y, cam.right.z, cam.down.x,
                       cam.down.y, cam.down.z, values.at("light_azimuth"), values.at("light_elevation"));
-        list.push_back({"u_light_volume", "precompute/light_volume.frag", lightVolumeSize(volume.dims(), int(values.at("shadow_resolution"))), 1, key});
+        list.push_back({"u_light_volume", "stages/shadows/light_volume.frag", lightVolumeSize(volume.dims(), int(values.at("shadow_resolution"))), 1, key});
     }
     return list;
 }
 
 }  // namespace voxlab
+
+VOXLAB_RENDERERS(composite) { registry.add<voxlab::CompositeRenderer>(); }

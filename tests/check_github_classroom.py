@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
-"""Checks the GitHub Classroom workflow, tools/github-classroom/classroom.yml,
-as far as it can be checked without GitHub:
+"""Checks the GitHub Classroom workflow that tools/github-classroom/
+make_workflow.py writes into a student release (.github/workflows/
+classroom.yml), as far as it can be checked without GitHub:
 
   1. it parses as YAML (with python3-yaml; without it, that part is skipped
      and a line-based reading of the generated layout is used instead), and
-     it is what tools/github-classroom/make_workflow.py generates;
+     printed without --out it is the same text;
   2. its shape: triggered on push, checks: write, one job whose graded steps
      use autograding-command-grader, and a reporter whose `runners` and
      <ID>_RESULTS variables name exactly those steps;
@@ -220,9 +221,16 @@ def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__.strip().splitlines()[-2])
     src, binary = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
-    path = os.path.join(src, "tools", "github-classroom", "classroom.yml")
-    text = open(path, encoding="utf-8").read()
     failures = []
+    # The workflow as a release gets it (tools/make_student_release.sh).
+    with tempfile.TemporaryDirectory(prefix="voxlab_classroom_") as tmp:
+        path = os.path.join(tmp, ".github", "workflows", "classroom.yml")
+        r = subprocess.run([sys.executable, os.path.join(src, "tools", "github-classroom", "make_workflow.py"),
+                            "--out", path], capture_output=True, text=True)
+        if r.returncode != 0:
+            print("FAIL  make_workflow.py writes the workflow: " + r.stderr.strip())
+            return 1
+        text = open(path, encoding="utf-8").read()
 
     def expect(ok, what):
         print(("ok    " if ok else "FAIL  ") + what)
@@ -245,10 +253,9 @@ def main():
         read = [{k: BLOCK if i < len(lines_steps) and lines_steps[i].get(k) == BLOCK else v for k, v in s.items()}
                 for i, s in enumerate(steps)]
         expect(lines_steps == read, "the line-based reading (used without python3-yaml) agrees with the YAML parser")
-    r = subprocess.run([sys.executable, os.path.join(src, "tools", "github-classroom", "make_workflow.py"), "--check"],
+    r = subprocess.run([sys.executable, os.path.join(src, "tools", "github-classroom", "make_workflow.py")],
                        capture_output=True, text=True)
-    expect(r.returncode == 0, "classroom.yml is what make_workflow.py generates" +
-           ("" if r.returncode == 0 else f" ({r.stderr.strip()})"))
+    expect(r.returncode == 0 and r.stdout == text, "without --out, make_workflow.py prints the same workflow")
 
     # 2. Shape, 3. stages and points (every stage with points, in the manifests' order), 4. commands.
     graders = check_shape(steps, expect)

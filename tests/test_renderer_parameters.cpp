@@ -5,6 +5,7 @@
 #include <set>
 
 #include "support/error_of.h"
+#include "voxlab/empty_space.h"
 #include "voxlab/error.h"
 #include "voxlab/renderers.h"
 
@@ -32,6 +33,39 @@ TEST(RendererParameters, EveryDeclarationIsWellFormed) {
     }
     for (const char* id : {"slicer", "mip", "minip", "average", "firsthit", "slab_mip", "composite", "iso", "tf2d"})
         EXPECT_TRUE(ids.count(id)) << id << " is not registered";
+}
+
+// The features compositing switches on come from their stages' folders:
+// each component's parameters are composite's, its first switches it on
+// (a Bool, off by default, so a scene that names none renders plain
+// compositing), and its switch alone decides when its rules apply.
+TEST(RendererParameters, CompositeComponentsBringTheirParameters) {
+    const Renderer& composite = rendererRegistry().get("composite");
+    std::set<std::string> declared;
+    for (const ParameterSpec& p : composite.parameters()) declared.insert(p.name);
+    std::set<std::string> switches;
+    for (const auto& component : compositeComponents().all()) {
+        const std::vector<ParameterSpec> params = component->parameters();
+        ASSERT_FALSE(params.empty());
+        SCOPED_TRACE(params.front().name);
+        EXPECT_EQ(params.front().type, ParameterType::Bool);
+        EXPECT_EQ(params.front().defaultValue, 0.0);
+        switches.insert(params.front().name);
+        for (const ParameterSpec& p : params) EXPECT_TRUE(declared.count(p.name)) << p.name;
+        ParameterValues values = composite.resolveParameters({}, glm::dvec2(0.0, 1.0));
+        EXPECT_FALSE(component->on(values));
+        values[params.front().name] = 1.0;
+        EXPECT_TRUE(component->on(values));
+        // Switched on, a component that reads beyond a brick refuses bricks.
+        if (component->readsBeyondBrick())
+            EXPECT_NE(errorOf([&] { composite.brickCombine(values); }).find("reads beyond one brick"),
+                      std::string::npos);
+        else
+            EXPECT_NO_THROW(composite.brickCombine(values));
+        const bool skips = composite.emptySpaceRule(values).kind != EmptySpaceRule::Kind::None;
+        EXPECT_EQ(skips, component->keepsSkipping());
+    }
+    EXPECT_EQ(switches, (std::set<std::string>{"gradient_opacity", "ambient_occlusion", "preintegrated", "shadows"}));
 }
 
 TEST(RendererParameters, DataUnitParametersFollowTheValueRange) {

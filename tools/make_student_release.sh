@@ -93,6 +93,11 @@ tools/setup.sh                 # installs what is missing, builds, opens the vie
 - The framework's full guide (conventions, scene files, datasets, renderers, the viewer):
   `README_framework.md`.
 MD
+# The GitHub Classroom autograding workflow for this release's stages
+# (tools/github-classroom/README.md), and what students' commits leave out.
+mkdir -p "$out/.github/workflows"
+python3 "$root/tools/github-classroom/make_workflow.py" --out "$out/.github/workflows/classroom.yml" >/dev/null
+printf '/build/\n/voxlab-check/\n' > "$out/.gitignore"
 mkdir -p "$out/tests/golden"   # the scenes the handouts render (JSON only)
 cp -r "$root/tests/golden/scenes" "$out/tests/golden/"
 

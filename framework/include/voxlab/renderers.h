@@ -51,6 +51,52 @@ private:
     RayResult result_;
 };
 
+// A feature that compositing switches on per scene (boundary emphasis,
+// occlusion, pre-integration, shadows, ...), brought by its own stage's
+// folder as Inviwo's shader components are: its parameters, the first of
+// them a Bool that switches it on (the entry shader reads each as u_NAME and
+// calls the stage's GLSL under the switch); the texture it needs computed
+// before a frame; whether it reads beyond one brick of a bricked volume;
+// whether empty-space skipping keeps its image; whether it classifies the
+// samples itself (then it does not combine with a label map or a fused
+// volume, which classify them). A stage adds its component in its
+// framework/stages/STAGE/component.cpp:
+//   VOXLAB_COMPOSITE_COMPONENTS(shadows) { components.add<ShadowsComponent>(); }
+class CompositeComponent {
+public:
+    virtual ~CompositeComponent() = default;
+    virtual std::vector<ParameterSpec> parameters() const = 0;
+    virtual bool readsBeyondBrick() const { return false; }
+    virtual bool keepsSkipping() const { return true; }
+    virtual bool classifies() const { return false; }
+    virtual std::vector<Precomputation> precomputations(const Scene&, const Volume&, const ParameterValues&) const {
+        return {};
+    }
+    // Whether `values` switch it on (its first parameter is not 0).
+    bool on(const ParameterValues& values) const;
+};
+
+class CompositeComponents {
+public:
+    template <class T>
+    void add() {
+        components_.push_back(std::make_unique<T>());
+    }
+    const std::vector<std::unique_ptr<CompositeComponent>>& all() const { return components_; }
+
+private:
+    std::vector<std::unique_ptr<CompositeComponent>> components_;
+};
+
+// Every stage's components, in the stages' order (framework/stages/stages.cmake).
+const CompositeComponents& compositeComponents();
+
+#define VOXLAB_COMPOSITE_COMPONENTS(stage)                                \
+    namespace voxlab {                                                    \
+    void stageComponents_##stage(CompositeComponents& components);        \
+    }                                                                     \
+    void voxlab::stageComponents_##stage(voxlab::CompositeComponents& components)
+
 // Parameters several renderers declare alike (shared_parameters.cpp).
 // Shading: shading, blinn, ka, kd, ks, shininess, light_azimuth,
 // light_elevation, min_gradient, and the gradient's sobel and

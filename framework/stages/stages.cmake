@@ -29,9 +29,9 @@ set(VOXLAB_STAGES
   attenuated_mip
   composite
   gradient_opacity
-  ambient_occlusion
   preintegration
   shadows
+  ambient_occlusion
   mida
   iso
   marching_cubes

@@ -62,10 +62,17 @@ private:
 // volume, which classify them). A stage adds its component in its
 // framework/stages/STAGE/component.cpp:
 //   VOXLAB_COMPOSITE_COMPONENTS(shadows) { components.add<ShadowsComponent>(); }
+// and its GLSL in framework/stages/STAGE/component.glsl: its uniforms (but
+// the switch) and vec4 STAGE_component(vec4 c, vec3 p, Ray ray), which the
+// entry shader calls, where the switch is on, at the component's phase:
+// in place of the classification, on the classified sample, or on the lit
+// one (the generated stages/composite/components.glsl).
 class CompositeComponent {
 public:
+    enum class Phase { Classify, Classified, Lit };
     virtual ~CompositeComponent() = default;
     virtual std::vector<ParameterSpec> parameters() const = 0;
+    virtual Phase phase() const = 0;
     virtual bool readsBeyondBrick() const { return false; }
     virtual bool keepsSkipping() const { return true; }
     virtual bool classifies() const { return false; }
@@ -81,12 +88,24 @@ public:
     template <class T>
     void add() {
         components_.push_back(std::make_unique<T>());
+        stages_.push_back(stage_);
     }
     const std::vector<std::unique_ptr<CompositeComponent>>& all() const { return components_; }
+    // The stage whose folder brought the i-th component (its GLSL's prefix).
+    const std::string& stage(std::size_t i) const { return stages_.at(i); }
+    void setStage(std::string stage) { stage_ = std::move(stage); }  // while its folder adds
 
 private:
     std::vector<std::unique_ptr<CompositeComponent>> components_;
+    std::vector<std::string> stages_;
+    std::string stage_;
 };
+
+// The GLSL that calls every component at its phase (included by composite's
+// entry shader as "stages/composite/components.glsl"): the components'
+// files, their switches' uniforms, and components_classify(p, ray, out c),
+// components_classified(c, p, ray), components_lit(c, p, ray).
+std::string compositeComponentsGlsl();
 
 // Every stage's components, in the stages' order (framework/stages/stages.cmake).
 const CompositeComponents& compositeComponents();

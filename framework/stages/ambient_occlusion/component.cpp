@@ -8,6 +8,7 @@ namespace {
 
 class AmbientOcclusionComponent final : public CompositeComponent {
 public:
+    Phase phase() const override { return Phase::Lit; }
     std::vector<ParameterSpec> parameters() const override {
         return {{"ambient_occlusion", ParameterType::Bool, 0, 1, 0,
                  "darken each sample by the mean opacity around it (local ambient occlusion)"},

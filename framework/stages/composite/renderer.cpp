@@ -22,6 +22,10 @@ public:
     std::vector<Precomputation> precomputations(const Scene& scene, const Volume& volume,
                                                 const ParameterValues& values) const override;
     void checkScene(const Scene& scene, const ParameterValues& values) const override;
+    // Its components' GLSL, called where each is switched on.
+    std::map<std::string, std::string> generatedShaders() const override {
+        return {{"stages/composite/components.glsl", compositeComponentsGlsl()}};
+    }
 };
 
 std::string CompositeRenderer::id() const { return "composite"; }

@@ -10,6 +10,7 @@ class GradientOpacityComponent final : public CompositeComponent {
 public:
     // The bounds are gradient magnitudes, data units per unit length, given
     // here as fractions of the value range's width (dataSpan).
+    Phase phase() const override { return Phase::Classified; }
     std::vector<ParameterSpec> parameters() const override {
         ParameterSpec low{"gradient_low", ParameterType::Float, 0.0, 0.5, 0.01,
                           "gradient opacity: at or below this gradient magnitude, no opacity (data units per unit "

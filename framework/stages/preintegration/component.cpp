@@ -15,6 +15,7 @@ constexpr int kTableSize = 256;
 
 class PreintegrationComponent final : public CompositeComponent {
 public:
+    Phase phase() const override { return Phase::Classify; }
     std::vector<ParameterSpec> parameters() const override {
         return {{"preintegrated", ParameterType::Bool, 0, 1, 0,
                  "classify each segment between two samples by a pre-integrated table (fewer samples, no slicing)"}};

@@ -14,6 +14,7 @@ namespace {
 
 class ShadowsComponent final : public CompositeComponent {
 public:
+    Phase phase() const override { return Phase::Lit; }
     std::vector<ParameterSpec> parameters() const override {
         // The light volume is computed again whenever the camera turns (the
         // light turns with it): on the bonsai, 64 per axis costs about 0.1 s

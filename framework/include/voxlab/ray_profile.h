@@ -24,7 +24,7 @@
 //  - first hit and the isosurface: the first sample after which the pixel
 //    holds a hit.
 // The ray is the one the renderer follows (jitter, the region of interest,
-// clip planes, a cutting plane's half-space, slab_mip's slab: as the entry
+// clip planes, a cutting plane's half-space, a thin slab: as the entry
 // shader clips it), with empty-space skipping off, as grading renders.
 #pragma once
 
@@ -73,10 +73,10 @@ struct RayProfile {
     int chosen = -1;                  // the sample that gives the pixel its value (maximum, minimum, hit); -1: none
     std::string why;                  // why the ray stopped, in words
     std::string note;                 // what the profile leaves out, if anything ("" when exact)
-    double threshold = 0.0;           // firsthit's threshold or iso's isovalue (data units)
+    double threshold = 0.0;           // a first hit's threshold or the isovalue (data units)
     bool hasThreshold = false;
     double earlyTermination = 1.0;    // composite's early-termination opacity
-    double hitT = 0.0;                // iso/firsthit: where the surface or hit lies along the ray
+    double hitT = 0.0;                // where the surface or the first hit lies along the ray
     // The pixel's premultiplied colour and opacity before the background:
     // the renderer's output is result.rgb + (1 - result.a) * background.
     glm::vec4 result{0.0f};

@@ -203,12 +203,18 @@ TEST_F(HostileSubmissions, ACppFileBesideAGlslStageIsNotCompiled) {
 
 // --- A C++ stage's code runs boxed in. ---
 
+// The stage folders hold the stages' oracle tests and check code beside
+// their shaders: neither may reach a graded stage (the grading worker reads
+// the folders' shader files only; the stage host, where C++ runs, none).
 TEST_F(HostileSubmissions, CppCannotReadTheReferenceOrTheExpectedOutputs) {
     const std::string reference = (kSource / "reference/mip/mip.glsl").string();
     const std::string expected = (fs::path(options().expectedDir) / "texslice3d/bucky_oblique.png").string();
+    const std::string oracle = (kSource / "framework/stages/marching_cubes/test_marching_cubes.cpp").string();
+    const std::string check = (kSource / "framework/stages/texslice3d/check.cpp").string();
     const std::string attack =
         "    std::puts(\"HOSTILE-RAN\");\n"
-        "    for (const char* path : {\"" + reference + "\", \"" + expected + "\", \"/etc/shadow\"}) {\n"
+        "    for (const char* path : {\"" + reference + "\", \"" + expected + "\", \"" + oracle + "\", \"" + check +
+        "\", \"/etc/shadow\"}) {\n"
         "        std::ifstream in(path);\n"
         "        std::stringstream s; s << in.rdbuf();\n"
         "        if (in && s.str().size() > 0) std::printf(\"LEAKED %s\\n\", path);\n"

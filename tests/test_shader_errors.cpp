@@ -8,9 +8,11 @@
 #include <type_traits>
 #include <utility>
 
+#include "support/error_of.h"
 #include "support/gl_fixture.h"
 #include "voxlab_gl.h"
 #include "voxlab/gl_context.h"
+#include "voxlab/project_root.h"
 #include "voxlab/shader.h"
 #include "voxlab/scene.h"
 #include "voxlab/render_engine.h"
@@ -101,6 +103,25 @@ TEST(ShaderLibrary, ImplementationRootComesFirstAndEachFileOnce) {
     for (const std::string& f : s.files) count += f.find("voxlab/ray.glsl") != std::string::npos;
     EXPECT_EQ(count, 1);
     EXPECT_EQ(s.text.rfind("#version 330 core", 0), 0u);
+    fs::remove_all(root);
+}
+
+// A name "stages/STAGE/FILE" is the framework's stage folder's alone: an
+// implementation's own stages/ folder is never read, and of the folder only
+// shader files are (it also holds the stage's C++ and oracle tests, which
+// an #include would print into a compile log).
+TEST(ShaderLibrary, StageFolderNamesReachOnlyTheFrameworksShaders) {
+    const fs::path root = makeImplementation("mip", "mip.glsl", "float mip_ray(Ray r) { return 7.0; }\n");
+    fs::create_directories(root / "stages" / "mip");
+    std::ofstream(root / "stages" / "mip" / "mip.frag") << "#version 330 core\nPLANTED\n";
+    const ShaderLibrary lib = ShaderLibrary::forImplementation(root.string());
+    EXPECT_EQ(lib.resolve("stages/mip/mip.frag"), stagesRoot() + "/mip/mip.frag");
+    EXPECT_EQ(lib.preprocess("stages/mip/mip.frag").text.find("PLANTED"), std::string::npos);
+    for (const char* name : {"stages/iso/test_iso.cpp", "stages/mip/renderer.cpp", "stages/stages.cmake"})
+        EXPECT_NE(errorOf([&] { lib.resolve(name); }).find("not a .glsl, .frag or .vert file"), std::string::npos)
+            << name;
+    EXPECT_NE(errorOf([&] { lib.resolve("stages/../shaders/voxlab/ray.glsl"); }).find("without '..'"),
+              std::string::npos);
     fs::remove_all(root);
 }
 

@@ -27,5 +27,8 @@ std::string stagesRoot();
 // the engine's passes) and stagesRoot(). What a worker may read, what the
 // expected outputs depend on, what is checked for both GLSL dialects.
 std::vector<std::string> frameworkShaderFolders();
+// Whether `path` names a shader file: .glsl, .frag or .vert (what a stage
+// folder offers the shader library, the grading worker and the install).
+bool isShaderFile(const std::string& path);
 
 }  // namespace voxlab

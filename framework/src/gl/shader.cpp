@@ -401,7 +401,11 @@ std::string ShaderLibrary::resolve(const std::string& name, const std::string& i
     const std::string where = includedFrom.empty() ? "" : includedFrom + ": ";
     checkIncludeName(name, where);
     if (generated_.count("generated:" + name)) return "generated:" + name;
-    if (name.rfind(kStagesPrefix, 0) == 0) return resolveIn(stagesRoot(), name.substr(kStagesPrefix.size()), name, where);
+    if (name.rfind(kStagesPrefix, 0) == 0) {
+        // A stage folder holds C++ and tests beside its shaders: only these.
+        if (!isShaderFile(name)) throw ShaderError(where + "shader '" + name + "': not a .glsl, .frag or .vert file");
+        return resolveIn(stagesRoot(), name.substr(kStagesPrefix.size()), name, where);
+    }
     // A stage the first folder (the implementation) has is its alone: an
     // empty or incomplete stage folder does not borrow a later folder's files.
     const std::string top = name.substr(0, name.find('/'));

@@ -128,10 +128,7 @@ GlslScan scanGlsl(const std::string& text) {
     return scan;
 }
 
-bool isGlsl(const fs::path& p) {
-    const std::string ext = p.extension().string();
-    return ext == ".glsl" || ext == ".frag" || ext == ".vert";
-}
+bool isGlsl(const fs::path& p) { return isShaderFile(p.string()); }
 
 std::string readText(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);

@@ -262,9 +262,15 @@ std::vector<std::string> cppSources(const StageRun& run, const StageManifest& ma
     return sources;
 }
 
+// What the worker reads besides its task: shaders/ and datasets/ whole, and
+// of the stage folders only their shader files (the folders also hold the
+// stages' C++, their checks and oracle tests, which a graded stage must not
+// read: Landlock allows single files).
 std::vector<std::string> dataFolders() {
-    std::vector<std::string> folders = frameworkShaderFolders();
-    folders.push_back(projectRoot() + "/datasets");
+    std::vector<std::string> folders = {projectRoot() + "/shaders", projectRoot() + "/datasets"};
+    std::error_code ec;
+    for (const auto& entry : fs::recursive_directory_iterator(stagesRoot(), ec))
+        if (entry.is_regular_file(ec) && isShaderFile(entry.path().string())) folders.push_back(entry.path().string());
     const char* path = std::getenv("VOXLAB_DATA_PATH");
     for (std::string rest = path ? path : ""; !rest.empty();) {
         const std::size_t colon = rest.find(':');

@@ -53,4 +53,9 @@ std::string stagesRoot() { return projectRoot() + "/framework/stages"; }
 
 std::vector<std::string> frameworkShaderFolders() { return {projectRoot() + "/shaders", stagesRoot()}; }
 
+bool isShaderFile(const std::string& path) {
+    const std::string ext = fs::path(path).extension().string();
+    return ext == ".glsl" || ext == ".frag" || ext == ".vert";
+}
+
 }  // namespace voxlab

@@ -230,6 +230,9 @@ public:
                                       std::optional<glm::dvec2> dataRange = std::nullopt) const;
 };
 
+// Whether the Bool (or number) parameter `name` is set and not 0 in `values`.
+bool parameterOn(const ParameterValues& values, const std::string& name);
+
 class RendererRegistry {
 public:
     template <class T, class... Args>

@@ -79,8 +79,9 @@ public:
     virtual std::vector<Precomputation> precomputations(const Scene&, const Volume&, const ParameterValues&) const {
         return {};
     }
-    // Whether `values` switch it on (its first parameter is not 0).
-    bool on(const ParameterValues& values) const;
+    // Its switch, the first parameter's name, and whether `values` turn it on.
+    std::string switchName() const { return parameters().front().name; }
+    bool on(const ParameterValues& values) const { return parameterOn(values, switchName()); }
 };
 
 class CompositeComponents {

@@ -51,16 +51,18 @@ void Renderer::checkScene(const Scene& scene, const ParameterValues&) const {
 
 BrickCombine Renderer::brickCombine(const ParameterValues&) const { return BrickCombine::None; }
 
+bool parameterOn(const ParameterValues& values, const std::string& name) {
+    const auto it = values.find(name);
+    return it != values.end() && it->second != 0.0;
+}
+
 namespace {
 
 // The estimator the parameters `sobel` and `precomputed_gradients` choose,
 // and whether it is precomputed.
 std::pair<GradientEstimator, bool> gradientChoice(const ParameterValues& values) {
-    const auto on = [&](const char* name) {
-        const auto it = values.find(name);
-        return it != values.end() && it->second != 0.0;
-    };
-    return {on("sobel") ? GradientEstimator::Sobel : GradientEstimator::Central, on("precomputed_gradients")};
+    return {parameterOn(values, "sobel") ? GradientEstimator::Sobel : GradientEstimator::Central,
+            parameterOn(values, "precomputed_gradients")};
 }
 
 }  // namespace

@@ -50,7 +50,7 @@ std::string compositeComponentsGlsl() {
     std::string includes, uniforms, classify, classified, lit;
     for (std::size_t i = 0; i < components.all().size(); ++i) {
         const std::string stage = components.stage(i);
-        const std::string on = "u_" + components.all()[i]->parameters().front().name;
+        const std::string on = "u_" + components.all()[i]->switchName();
         includes += "#include \"stages/" + stage + "/component.glsl\"\n";
         uniforms += "uniform int " + on + ";\n";
         const std::string call = stage + "_component(";
@@ -70,11 +70,6 @@ std::string compositeComponentsGlsl() {
            "    c = vec4(0.0);\n    return false;\n}\n"
            "vec4 components_classified(vec4 c, vec3 p, Ray ray) {\n" + classified + "    return c;\n}\n"
            "vec4 components_lit(vec4 c, vec3 p, Ray ray) {\n" + lit + "    return c;\n}\n#endif\n";
-}
-
-bool CompositeComponent::on(const ParameterValues& values) const {
-    const auto it = values.find(parameters().front().name);
-    return it != values.end() && it->second != 0.0;
 }
 
 }  // namespace voxlab

@@ -55,9 +55,8 @@ void CompositeRenderer::checkScene(const Scene& scene, const ParameterValues& va
         throw Error("composite: parameter '" + name + "' does not combine with " + other);
     };
     for (const auto& component : compositeComponents().all())
-        if (component->classifies() && component->on(values)) refuse(component->parameters().front().name);
-    const auto preclassify = values.find("preclassify");
-    if (preclassify != values.end() && preclassify->second != 0.0) refuse("preclassify");
+        if (component->classifies() && component->on(values)) refuse(component->switchName());
+    if (parameterOn(values, "preclassify")) refuse("preclassify");
 }
 
 // Composited front to back, brick after brick, unless a component reads
@@ -65,7 +64,7 @@ void CompositeRenderer::checkScene(const Scene& scene, const ParameterValues& va
 BrickCombine CompositeRenderer::brickCombine(const ParameterValues& values) const {
     for (const auto& component : compositeComponents().all())
         if (component->readsBeyondBrick() && component->on(values))
-            throw Error("composite: parameter '" + component->parameters().front().name +
+            throw Error("composite: parameter '" + component->switchName() +
                         "' reads beyond one brick and does not combine with a bricked volume");
     return BrickCombine::Over;
 }

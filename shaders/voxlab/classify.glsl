@@ -42,7 +42,7 @@ float opacity_correction(float alpha, float step_units) {
     return 1.0 - pow(1.0 - clamp(alpha, 0.0, 1.0), step_units);
 }
 
-// How a single value is shown by the projection renderers (slicer, MIP,
+// How a single value is shown by the projection renderers (a slice view, MIP,
 // ...): opaque grey through the window or, when the scene has a transfer
 // function, its colour with its opacity. The result is premultiplied
 // (rgb already times alpha), ready for finish() in voxlab/output.glsl.

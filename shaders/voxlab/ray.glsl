@@ -142,7 +142,7 @@ bool in_this_brick(inout Ray ray) {
     return true;
 }
 
-// The same for a single point (the slicer's): whether it is this brick's.
+// The same for a single point (a slice view's): whether it is this brick's.
 bool point_in_this_brick(vec3 p) {
     return u_bricked == 0 || in_brick_box(p);
 }

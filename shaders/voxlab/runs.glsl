@@ -82,7 +82,7 @@ float smallest_over_runs(Ray ray) {
 
 // Early termination: a loop over the whole ray stops at the first sample
 // where the opacity so far reaches u_early_termination (declared in
-// composite/composite.glsl), but a run's loop only sees the opacity of its
+// the compositing stage's GLSL), but a run's loop only sees the opacity of its
 // own samples. So when a run takes the total past the threshold, the walk
 // takes that run again one sample at a time and stops where the whole-ray
 // loop would: the image is the same, for at most one run's extra samples.

@@ -7,8 +7,8 @@
 //     "title": "Lecture 4: direct volume rendering",      (optional)
 //     "slides": [
 //       {"scene": "scenes/bonsai_mip.json", "caption": "MIP: the brightest sample"},
-//       {"scene": "scenes/bonsai_mip.json", "renderer": "composite",
-//        "transfer_function": "tf/bonsai.json", "caption": "compositing"},
+//       {"scene": "scenes/bonsai_mip.json", "transfer_function": "tf/bonsai.json",
+//        "caption": "MIP through a transfer function"},
 //       {"scene": {"dataset": "tooth.nrrd", "renderer": "iso"}, "caption": "an isosurface"}
 //     ]
 //   }

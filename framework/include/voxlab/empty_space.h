@@ -102,7 +102,7 @@ struct BrickGrid {
 // Renderer::emptySpaceRule() from its parameters.
 struct EmptySpaceRule {
     enum class Kind {
-        None,                // every brick may contribute (MIP, average, ...)
+        None,                // every brick may contribute (MIP, the mean, ...)
         TransferFunction,    // visible where the 1D transfer function's opacity can be > 0
         TransferFunction2D,  // the same for the 2D transfer function
         AtLeast,             // visible where a value >= threshold can occur (isosurface, first hit)

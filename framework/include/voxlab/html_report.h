@@ -60,7 +60,7 @@ struct StageProblem {
 std::vector<StageProblem> stageProblems(const nlohmann::json& results);
 
 // The same in one line for a CSV cell, worst first: "mip: compile_error
-// (mip/mip.glsl:20: error: ...); iso: failed; composite: not_implemented".
+// (mip/mip.glsl:20: error: ...); iso: failed; shading: not_implemented".
 // Messages are given for the first four kinds only.
 std::string problemsSummary(const nlohmann::json& results);
 

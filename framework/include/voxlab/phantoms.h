@@ -35,7 +35,7 @@
 //                  the fat. Rays that miss the body see only -1000: every
 //                  value on them is negative, so a maximum started at 0 (or
 //                  a minimum at 0 where all are positive) shows.
-//  sphere-over-slab float32, a scene for shadows. A slab of value 1 fills
+//  sphere-over-slab float32, a scene for shadowing. A slab of value 1 fills
 //                  0.10 N <= z <= 0.25 N (all x and y); a sphere of value
 //                  0.5 and radius 0.15 N floats above it, centred at
 //                  (N/2, N/2, 0.6 N); elsewhere 0. Lit from +z, the sphere

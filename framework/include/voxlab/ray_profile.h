@@ -51,7 +51,7 @@ struct RaySample {
     // opacity, uncorrected).
     glm::vec4 classified{0.0f};
     // Premultiplied colour and opacity the pixel would have if the ray ended
-    // after this sample: front-to-back compositing so far (composite), or
+    // after this sample: front-to-back compositing so far, or
     // the display of the running maximum / minimum / mean / first hit.
     glm::vec4 accumulated{0.0f};
     double runningMax = 0.0, runningMin = 0.0, runningMean = 0.0;  // over samples 0..this one
@@ -75,7 +75,7 @@ struct RayProfile {
     std::string note;                 // what the profile leaves out, if anything ("" when exact)
     double threshold = 0.0;           // a first hit's threshold or the isovalue (data units)
     bool hasThreshold = false;
-    double earlyTermination = 1.0;    // composite's early-termination opacity
+    double earlyTermination = 1.0;    // compositing's early-termination opacity
     double hitT = 0.0;                // where the surface or the first hit lies along the ray
     // The pixel's premultiplied colour and opacity before the background:
     // the renderer's output is result.rgb + (1 - result.a) * background.
@@ -93,7 +93,7 @@ struct ProfileReadings {
     std::vector<glm::vec4> accumulated, records;
     glm::vec4 result{0.0f};
     int samples = -1;
-    double earlyTermination = 1.0;  // composite's parameter (1: none)
+    double earlyTermination = 1.0;  // compositing's parameter (1: none)
     double threshold = 0.0;         // first hit's threshold or the isovalue
     const TransferFunction* tf = nullptr;  // how one value alone is shown (else grey through the window)
     glm::dvec2 window{0.0, 1.0};

@@ -93,7 +93,7 @@ public:
     // order (the mesh renderer). The depth buffer starts cleared.
     virtual void enableDepthTest() = 0;
     // Draws one square (two triangles, six vertices: gl_VertexID 0..5) per
-    // instance, each instance a vec4 at attribute 0 (a splat's world position
+    // instance, each instance a vec4 at attribute 0 (a point's world position
     // and value); the vertex shader places the corners.
     virtual void drawInstancedSquares(const std::vector<glm::vec4>& instances) = 0;
     // The transfer function the pass classifies with: the scene's, or the
@@ -186,8 +186,8 @@ public:
     virtual bool needsTransferFunction() const { return false; }
     // Whether the image depends on the 1D transfer function at all, when the
     // scene has one (the viewer hides the editor otherwise). Most renderers
-    // colour by it; an isosurface has a colour of its own, and tf2d has the
-    // 2D function instead.
+    // colour by it; an isosurface has a colour of its own, and a renderer classifying
+    // by value and gradient has the 2D function instead.
     virtual bool usesTransferFunction() const { return true; }
     // The same for the 2D transfer function (the engine's fallback is one
     // of Levoy's triangles at the middle of the window).
@@ -240,7 +240,7 @@ public:
         renderers_.push_back(std::make_unique<T>(std::forward<Args>(args)...));
     }
     const Renderer* find(const std::string& id) const;
-    // Throws voxlab::Error("unknown renderer 'x' (available: slicer, mip)").
+    // Throws voxlab::Error("unknown renderer 'x' (available: a, b, ...)").
     const Renderer& get(const std::string& id) const;
     const std::vector<std::unique_ptr<Renderer>>& all() const { return renderers_; }
 

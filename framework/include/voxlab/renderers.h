@@ -18,12 +18,12 @@ ProfileSettings compositingProfileSettings(const ParameterValues& values);
 // The renderer of a ray-value stage: a stage whose function
 // `float <stage>_ray(Ray ray)` (in <stage>/<stage>.glsl) returns one value
 // per ray in data units, shown through the window or the transfer function
-// (MinIP, the average, ...). Its entry shader is made from
+// (MinIP, the mean, ...). Its entry shader is made from
 // shaders/renderers/ray_value.frag.in with the stage's name filled in, and
 // its parameters become uniforms u_NAME; so adding such a stage takes its
 // folders and framework/stages/STAGE/renderer.cpp, e.g.
-//   VOXLAB_RENDERERS(minip) {
-//       registry.add<RayValueRenderer>("minip", "minimum intensity projection: ...", ProfileModel::Minimum);
+//   VOXLAB_RENDERERS(my_stage) {
+//       registry.add<RayValueRenderer>("my_stage", "what it shows: ...", ProfileModel::Minimum);
 //   }
 // What a ray-value stage's function returns: one value, in data units,
 // shown through the window or the transfer function (float STAGE_ray(Ray));
@@ -52,7 +52,7 @@ private:
 };
 
 // A feature that compositing switches on per scene (boundary emphasis,
-// occlusion, pre-integration, shadows, ...), brought by its own stage's
+// occlusion, pre-integration, shadowing, ...), brought by its own stage's
 // folder as Inviwo's shader components are: its parameters, the first of
 // them a Bool that switches it on (the entry shader reads each as u_NAME and
 // calls the stage's GLSL under the switch); the texture it needs computed
@@ -61,12 +61,12 @@ private:
 // samples itself (then it does not combine with a label map or a fused
 // volume, which classify them). A stage adds its component in its
 // framework/stages/STAGE/component.cpp:
-//   VOXLAB_COMPOSITE_COMPONENTS(shadows) { components.add<ShadowsComponent>(); }
+//   VOXLAB_COMPOSITE_COMPONENTS(my_feature) { components.add<MyFeatureComponent>(); }
 // and its GLSL in framework/stages/STAGE/component.glsl: its uniforms (but
 // the switch) and vec4 STAGE_component(vec4 c, vec3 p, Ray ray), which the
 // entry shader calls, where the switch is on, at the component's phase:
 // in place of the classification, on the classified sample, or on the lit
-// one (the generated stages/composite/components.glsl).
+// one (the generated components.glsl, compositeComponentsGlsl() below).
 class CompositeComponent {
 public:
     enum class Phase { Classify, Classified, Lit };
@@ -102,8 +102,8 @@ private:
     std::string stage_;
 };
 
-// The GLSL that calls every component at its phase (included by composite's
-// entry shader as "stages/composite/components.glsl"): the components'
+// The GLSL that calls every component at its phase (which the compositing
+// stage's entry shader includes as its components.glsl): the components'
 // files, their switches' uniforms, and components_classify(p, ray, out c),
 // components_classified(c, p, ray), components_lit(c, p, ray).
 std::string compositeComponentsGlsl();

@@ -42,7 +42,7 @@ inline constexpr std::size_t kResidentBricksAimed = 8;
 // pass at 512^2 costs about 30 ms on llvmpipe with 2 threads) and the volume
 // is over twice the budget, so that most bricks are uploaded every frame
 // anyway: then 1 (bricks as large as fit, the fewest passes). Measured on
-// 1024^3 bonsai, 256 MiB, composite 512^2: 8 bricks a frame took 803 ms,
+// 1024^3 bonsai, 256 MiB, compositing at 512^2: 8 bricks a frame took 803 ms,
 // 36 (8 resident, 28 uploaded) 1660 ms.
 std::size_t residentBricksAimed(std::size_t volumeBytes, std::size_t budgetBytes, bool passesExpensive);
 

@@ -17,7 +17,7 @@
 //    variable named `length` is a name like any other. Every other
 //    identifier (variables, the student's helpers, and the framework's
 //    functions too) becomes one token class, so renaming hides nothing
-//    (keeping `length` as a variable cost the texslice3d copy 0.03). A
+//    (keeping `length` as a variable cost the 3D texture-slicing copy 0.03). A
 //    swizzle after a dot (.xyz, .rgb) is kept: it cannot be renamed;
 //  - numbers are kept by value, spelled one way (1.0, 1., 1.0f, 1e0 are one
 //    token). A constant such as -3.4e38 or 1e-4 is a trace of the author, and
@@ -32,7 +32,7 @@
 //    them).
 //
 // Parameters, measured on tests/test_similarity.cpp's corpus: the reference
-// solutions of sampling, composite, texslice3d (C++) and mip, a disguised
+// solutions of sampling, compositing, 3D texture slicing (C++) and MIP, a disguised
 // copy of each, and two solutions of each written independently
 // (SimilarityMeasurement prints every pair). k = 8 tokens is about one short
 // statement (`maximum = max(maximum, v);` is 9), and w = 4 makes every match
@@ -60,7 +60,7 @@
 // the code is too short to say anything. A renamed copy of the whole MIP
 // stage still has 48 and is flagged.
 //
-// Threshold 0.5: on the corpus, the disguised copies score 0.81 (texslice3d),
+// Threshold 0.5: on the corpus, the disguised copies score 0.81 (3D texture slicing),
 // 0.87, 0.92 and 1 (mip); independent pairs at most 0.36 (0.32 among pairs
 // with 30 matching tokens or more). 0.5 lies between, nearer the independent
 // side: a pair shown needlessly costs a person a minute, a copy missed is

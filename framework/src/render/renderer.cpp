@@ -45,8 +45,8 @@ std::vector<ParameterSpec> Renderer::parametersFor(glm::dvec2 dataRange) const {
 void Renderer::draw(DrawContext&, const ParameterValues&) const {}
 
 void Renderer::checkScene(const Scene& scene, const ParameterValues&) const {
-    if (scene.labels) throw Error(id() + ": does not draw label maps (scene \"labels\"; composite does)");
-    if (scene.fusion) throw Error(id() + ": does not draw a fused second volume (scene \"fusion\"; composite does)");
+    if (scene.labels) throw Error(id() + ": does not draw label maps (scene \"labels\"; the compositing renderer does)");
+    if (scene.fusion) throw Error(id() + ": does not draw a fused second volume (scene \"fusion\"; the compositing renderer does)");
 }
 
 BrickCombine Renderer::brickCombine(const ParameterValues&) const { return BrickCombine::None; }

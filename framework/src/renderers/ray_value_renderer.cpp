@@ -1,5 +1,5 @@
 // voxlab renderer for ray-value stages (see renderers.h): what differs
-// between MinIP, the average and the like is the stage's name, its
+// between MinIP, the mean and the like is the stage's name, its
 // description and parameters, so the framework holds one class and one
 // shader template for all of them. The declaration is the registry's line,
 // not a file read at run time: a sandboxed grading worker, which may read

@@ -34,7 +34,7 @@ std::vector<ParameterSpec> compositingParameters() {
     using T = ParameterType;
     return {
         {kEarlyTermination, T::Float, 0.5, 1, 0.99, "stop a ray once its opacity reaches this (1: never stop early)"},
-        {kBackToFront, T::Bool, 0, 1, 0, "composite from the back (no early termination; same image)"},
+        {kBackToFront, T::Bool, 0, 1, 0, "accumulate from the back (no early termination; same image)"},
         {"jitter", T::Bool, 0, 1, 0, "start each ray at a random fraction of a step (turns rings into noise)"},
     };
 }

@@ -190,7 +190,7 @@ std::string presetOf(const Scene& scene, const Volume& volume) {
 // eighth of the window's size on each side; the coarse level: from the whole
 // window down to an eighth). An earlier rule grew the image only below half
 // the budget, and left it wherever it landed between half and all of it:
-// bonsai composite moved at 60 ms a frame and a smaller image than it could.
+// bonsai, composited, moved at 60 ms a frame and a smaller image than it could.
 static void adaptReduction(State& s, bool coarse) {
     double& r = coarse ? s.coarseReduction : s.reduction;
     const double largest = coarse ? 1.0 : 2.0;

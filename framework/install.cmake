@@ -4,7 +4,8 @@
 #   share/voxlab/shaders, datasets, ...      the project root voxlab finds from
 #                                            its own location (voxlab/project_root.h)
 #   share/voxlab/framework/include           the headers C++ stages compile against
-#   share/voxlab/framework/stages            the stages' own shaders
+#   share/voxlab/framework/stages            the stages' own shaders and C++ contracts
+#                                            (STAGE/include/voxlab/*.h)
 #   share/voxlab/framework/stage_library     the exports every stage library links,
 #                                            prebuilt, and the precompiled prelude
 #   share/doc/voxlab                         the documentation
@@ -29,9 +30,13 @@ if(EXISTS "${PROJECT_SOURCE_DIR}/tests/golden/scenes")
 endif()
 
 install(DIRECTORY framework/include DESTINATION ${VOXLAB_INSTALL_ROOT}/framework)
-# The stages' own shaders (entry, probe, precomputation passes).
+# The stages' own shaders (entry, probe, precomputation passes) and the
+# contracts of the C++ stages, with the list generated from them
+# (voxlab/stage_contracts.h, which stage_exports.cpp reads).
 install(DIRECTORY framework/stages DESTINATION ${VOXLAB_INSTALL_ROOT}/framework
-        FILES_MATCHING PATTERN "*.frag" PATTERN "*.vert" PATTERN "*.glsl")
+        FILES_MATCHING PATTERN "*.frag" PATTERN "*.vert" PATTERN "*.glsl" REGEX "/include/voxlab/[^/]*[.]h$")
+install(FILES ${PROJECT_BINARY_DIR}/framework/generated/voxlab/stage_contracts.h
+        DESTINATION ${VOXLAB_INSTALL_ROOT}/framework/include/voxlab)
 install(FILES framework/stage_library/stage_exports.cpp framework/stage_library/stage_prelude.h
         DESTINATION ${VOXLAB_INSTALL_ROOT}/framework/stage_library)
 install(FILES $<TARGET_OBJECTS:voxlab_stage_exports>

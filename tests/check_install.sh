@@ -66,7 +66,8 @@ cmake --install "$build" --prefix "$work/installed" > "$work/install.log" ||
     fail "cmake --install: $(tail -3 "$work/install.log")"
 share=share/voxlab
 for f in bin/voxlab bin/voxlab-stage-host $share/shaders/voxlab/ray.glsl $share/datasets/bucky.nrrd \
-         $share/framework/include/voxlab/error.h $share/framework/stage_library/stage_exports.o \
+         $share/framework/include/voxlab/error.h $share/framework/include/voxlab/stage_contracts.h \
+         $share/framework/stages/$stage/include/voxlab/slice_axis.h $share/framework/stage_library/stage_exports.o \
          $share/framework/stage_library/prelude/voxlab_stage_prelude.h.gch $share/reference/$stage/grading.json \
          $share/assignments/$stage/grading.json; do
     [ -f "$work/installed/$f" ] || fail "the install has no $f"
@@ -81,7 +82,7 @@ mkdir -p "$work/elsewhere/render"
 [ -s "$work/elsewhere/render/bucky.png" ] || fail "the installed voxlab wrote no image"
 echo "ok    the installed voxlab, moved, renders bucky.nrrd by name from another folder"
 full_marks "installed" "$(grade "$prefix" installed "$prefix/$share/reference")" installed
-poisoned_fails "installed" "$prefix/$share/framework/include/voxlab/proxy_geometry.h" "$prefix" \
+poisoned_fails "installed" "$prefix/$share/framework/stages/$stage/include/voxlab/slice_axis.h" "$prefix" \
     "$prefix/$share/reference" installed-poisoned
 
 # 2. A copied checkout: its project files and its build's programs.
@@ -91,5 +92,5 @@ cp -r "$project/shaders" "$project/datasets" "$project/reference" "$project/assi
 cp -r "$project/framework/include" "$project/framework/stage_library" "$project/framework/stages" "$copy/framework/"
 cp "$build/bin/voxlab" "$build/bin/voxlab-stage-host" "$copy/build/bin/"
 full_marks "copied checkout" "$(grade "$copy/build" copied "$copy/reference")" copied
-poisoned_fails "copied checkout" "$copy/framework/include/voxlab/proxy_geometry.h" "$copy/build" \
+poisoned_fails "copied checkout" "$copy/framework/stages/$stage/include/voxlab/slice_axis.h" "$copy/build" \
     "$copy/reference" copied-poisoned

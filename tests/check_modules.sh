@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The framework's module layering (tools/check_modules.py) holds, and the
 # check catches a planted violation: a copy of framework/ in which the GL
-# module includes the grader's header, and one in which the volume module
-# reaches into the renderer's private headers.
+# module includes the grader's header, one in which the volume module
+# reaches into the renderer's private headers, and one in which a C++
+# stage's contract (a stage folder's include/) includes the grader's.
 # usage: check_modules.sh PROJECT_DIR
 set -euo pipefail
 project=$1
@@ -21,3 +22,4 @@ plant() {  # plant FILE LINE EXPECTED
 }
 plant framework/src/gl/shader.cpp '#include "voxlab/grading.h"' "framework/src/gl/shader.cpp"
 plant framework/include/voxlab/volume.h '#include "../render/engine_internal.h"' "module volume includes ../render/engine_internal.h"
+plant framework/stages/splat/include/voxlab/splatting.h '#include "voxlab/grading.h"' "module contracts includes grading.h"

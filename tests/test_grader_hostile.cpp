@@ -399,7 +399,8 @@ TEST_F(HostileSubmissions, TheCompiledReferenceCannotBeEmbedded) {
         EXPECT_EQ(s["status"], "compile_error") << target << ": " << s["message"];
         EXPECT_NE(report_.find("incbin"), std::string::npos) << s["message"];
         // Outside the sandbox the same file builds (the test can fail).
-        const CommandResult built = runShell("g++ -std=c++17 -c -I" + (kSource / "framework/include").string() + " " +
+        const CommandResult built = runShell("g++ -std=c++17 -c -I" + (kSource / "framework/include").string() + " -I" +
+                                             (kSource / "framework/stages/texslice3d/include").string() + " " +
                                              (sub / "texslice3d/proxy_geometry.cpp").string() + " -o /dev/null");
         EXPECT_EQ(built.exitCode, 0) << built.err;
     }

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "voxlab/proxy_geometry.h"
+#include "voxlab/slice_axis.h"
 
 namespace voxlab::testing {
 namespace {

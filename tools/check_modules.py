@@ -5,7 +5,9 @@ A module is a folder of framework/src/ (the CLI, framework/cli/, is the
 module "cli"; the stage folders, framework/stages/*/, are the module
 "stages"). A header framework/include/voxlab/NAME.h belongs to the
 module whose folder holds NAME.cpp; a header with no such file is assigned
-below (HEADERS). Each module declares the modules it may include
+below (HEADERS). A stage's C++ contract,
+framework/stages/STAGE/include/voxlab/NAME.h, belongs to "contracts" (the
+generated voxlab/stage_contracts.h that includes them all, to "mesh"). Each module declares the modules it may include
 (DEPENDS, lowest first); a file that includes a header of any other module
 is a violation, and this prints each as FILE: includes HEADER (MODULE), then
 fails. KNOWN lists the violations still to be removed, each with why; one
@@ -23,13 +25,14 @@ DEPENDS = {
     "volume": ["io"],                # volumes, loaders, phantoms, the camera
     "gl": ["io"],                    # contexts, shaders, the stubs in a stage's text
     "scene": ["volume", "image", "io"],              # scenes, transfer functions, labels
-    "mesh": ["scene", "volume", "io"],               # C++ stages' contracts and geometry
-    "render": ["gl", "mesh", "scene", "volume", "image", "io"],  # the engine
-    "renderers": ["render", "gl", "mesh", "scene", "volume", "image", "io"],
-    "grade": ["renderers", "render", "gl", "mesh", "scene", "volume", "image", "io"],
-    "stages": ["grade", "renderers", "render", "gl", "mesh", "scene", "volume", "image", "io"],
-    "window": ["renderers", "render", "gl", "mesh", "scene", "volume", "image", "io"],
-    "cli": ["window", "grade", "renderers", "render", "gl", "mesh", "scene", "volume", "image", "io"],
+    "contracts": ["scene", "volume", "io"],          # the C++ stages' contracts (stage folders' include/)
+    "mesh": ["contracts", "scene", "volume", "io"],  # the C++ stage table and stage libraries
+    "render": ["gl", "mesh", "contracts", "scene", "volume", "image", "io"],  # the engine
+    "renderers": ["render", "gl", "mesh", "contracts", "scene", "volume", "image", "io"],
+    "grade": ["renderers", "render", "gl", "mesh", "contracts", "scene", "volume", "image", "io"],
+    "stages": ["grade", "renderers", "render", "gl", "mesh", "contracts", "scene", "volume", "image", "io"],
+    "window": ["renderers", "render", "gl", "mesh", "contracts", "scene", "volume", "image", "io"],
+    "cli": ["window", "grade", "renderers", "render", "gl", "mesh", "contracts", "scene", "volume", "image", "io"],
 }
 
 # Headers without a .cpp of the same name.
@@ -37,8 +40,6 @@ HEADERS = {
     "error": "io",
     "image": "image",
     "renderers": "renderers",
-    "proxy_geometry": "mesh",       # the texture-slicing stages' C++ contract
-    "shear_warp": "mesh",           # the shear-warp stage's C++ contract
     "window": "window",
 }
 
@@ -54,7 +55,7 @@ def module_of_source(project, path):
     if parts[:2] == ["framework", "src"]:
         return parts[2]
     if parts[:2] == ["framework", "stages"]:
-        return "stages"
+        return "contracts" if parts[3:5] == ["include", "voxlab"] else "stages"
     return None
 
 
@@ -66,6 +67,14 @@ def header_modules(project):
             if name.endswith(".cpp"):
                 found.setdefault(name[:-4], module)
     found.update(HEADERS)
+    stages = os.path.join(project, "framework", "stages")
+    for stage in sorted(os.listdir(stages)):
+        contracts = os.path.join(stages, stage, "include", "voxlab")
+        if os.path.isdir(contracts):
+            for name in os.listdir(contracts):
+                if name.endswith(".h"):
+                    found[name[:-2]] = "contracts"
+    found["stage_contracts"] = "mesh"  # generated from the contracts, for the stage table
     return found
 
 

@@ -1,7 +1,7 @@
 // Student starter code, generated from reference/shearwarp/shear_warp.cpp by tools/make_assignments.py.
 // Implement the functions marked TODO; everything else is given.
 // Stage: shear-warp, the factorisation (Lacroute and Levoy 1994). The
-// contract and the coordinates are in framework/include/voxlab/shear_warp.h.
+// contract and the coordinates are in framework/stages/shearwarp/include/voxlab/shear_warp.h.
 //
 // The view direction, measured in voxels (forward / spacing), decides
 // everything: the principal axis c is its largest component, so that rays

@@ -10,7 +10,7 @@
 // when the stack switches: the classic artefact of the method. Ties go to
 // the lower axis (x before y before z).
 #include "voxlab/error.h"  // NotImplemented, for the student stubs
-#include "voxlab/proxy_geometry.h"
+#include "voxlab/slice_axis.h"
 
 #include <cmath>
 

@@ -20,7 +20,23 @@ int gradeCommand(int argc, char** argv);
 int checkCommand(int argc, char** argv);
 int gradeWorkerCommand(int argc, char** argv);
 int benchCommand(int argc, char** argv);
-int meshCommand(int argc, char** argv);
+
+// A command a stage brings (framework/stages/STAGE/command.cpp), listed
+// after the framework's own by `voxlab help`:
+//   VOXLAB_COMMANDS(my_stage) { commands.push_back({"name", "ARGS", "what it does", &run}); }
+struct StageCommand {
+    const char* name;
+    const char* arguments;  // as `voxlab help` shows them: "DATASET"
+    const char* summary;
+    int (*run)(int argc, char** argv);
+};
+#define VOXLAB_COMMANDS(stage)                                                \
+    namespace voxlab::cli {                                                   \
+    void stageCommands_##stage(std::vector<StageCommand>& commands);          \
+    }                                                                         \
+    void voxlab::cli::stageCommands_##stage(std::vector<voxlab::cli::StageCommand>& commands)
+// The stages' commands, in the stages' order.
+const std::vector<StageCommand>& stageCommands();
 
 // Options that describe a scene, shared by `render` and `view`.
 std::vector<OptionSpec> sceneOptions();

@@ -3,10 +3,6 @@
 // this library defines. The declarations are weak, so a function the
 // submission's files do not define has the address null, and the loader
 // keeps the framework's own.
-#include "voxlab/marching_cubes.h"
-#include "voxlab/proxy_geometry.h"
-#include "voxlab/shear_warp.h"
-#include "voxlab/splatting.h"
 #include "voxlab/stage_library.h"
 
 namespace voxlab {

@@ -1,5 +1,5 @@
 // Stage: shear-warp, the factorisation (Lacroute and Levoy 1994). The
-// contract and the coordinates are in framework/include/voxlab/shear_warp.h.
+// contract and the coordinates are in framework/stages/shearwarp/include/voxlab/shear_warp.h.
 //
 // The view direction, measured in voxels (forward / spacing), decides
 // everything: the principal axis c is its largest component, so that rays

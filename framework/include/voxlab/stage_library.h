@@ -1,8 +1,10 @@
 // voxlab: the C++ student stages, called through a table that a grader can
 // re-point at a submission's code.
 //
-// C++ stages (proxy_geometry.h) are compiled into the framework from the
-// stage root (reference/ by default). The grader and `voxlab check` instead
+// A C++ stage's contract is a header in its stage folder,
+// framework/stages/STAGE/include/voxlab/ (on the include path of the
+// framework and of every stage library). C++ stages are compiled into the
+// framework from the stage root (reference/ by default). The grader and `voxlab check` instead
 // build a submission's stage .cpp files into a shared library together with
 // framework/stage_library/stage_exports.cpp, and load it into the process
 // that renders that submission: every function the library defines then
@@ -16,25 +18,20 @@
 
 #include <glm/glm.hpp>
 
-#include "voxlab/shear_warp.h"
-#include "voxlab/splatting.h"
+#include "voxlab/stage_contracts.h"
 
 namespace voxlab {
 
-// The one list of the C++ stage functions (their contracts: proxy_geometry.h,
-// marching_cubes.h, splatting.h, shear_warp.h): X(name, return type,
-// parameter types). From it come the table's members, the linked-in table,
-// the stubs that throw NotImplemented (stage_library.cpp), and the weak
-// declarations and exports every stage library carries
-// (framework/stage_library/stage_exports.cpp). Adding a function: a line
-// here, and its call across the stage host's pipe (stage_host.cpp).
-#define VOXLAB_CPP_STAGE_FUNCTIONS(X)                                                         \
-    X(planeBoxPolygon, std::vector<glm::dvec3>, (glm::dvec3, double, glm::dvec3, glm::dvec3)) \
-    X(chooseSliceAxis, int, (glm::dvec3))                                                    \
-    X(cubeCase, int, (const double*, double))                                                \
-    X(edgeCrossing, glm::dvec3, (glm::dvec3, glm::dvec3, double, double, double))            \
-    X(splatOrder, SplatOrder, (glm::dvec3))                                                  \
-    X(factorShearWarp, ShearWarp, (const Camera&, glm::ivec3, glm::dvec3))
+// The one list of the C++ stage functions, VOXLAB_CPP_STAGE_FUNCTIONS(X),
+// is generated (framework/stages/stages.cmake) into voxlab/stage_contracts.h
+// from the stage folders: each contract header defines its stage's part,
+// VOXLAB_STAGE_FUNCTIONS_<stage>(X), with X(name, return type, parameter
+// types). From it come the table's members, the linked-in table, the stubs
+// that throw NotImplemented (stage_library.cpp), and the weak declarations
+// and exports every stage library carries
+// (framework/stage_library/stage_exports.cpp). Adding a function: a line in
+// its contract header, and its call across the stage host's pipe
+// (stage_host.cpp, stage_host_main.cpp).
 
 // One pointer per C++ stage function.
 struct CppStages {
@@ -56,7 +53,7 @@ struct EdgeCrossingCall {
     double va, vb;
 };
 struct StageBatches {
-    // values: 8 per cube (marching_cubes.h's corner order); cases: count.
+    // values: 8 per cube (the corner order of cubeCase's contract); cases: count.
     void (*cubeCases)(const double* values, std::size_t count, double isovalue, int* cases);
     void (*edgeCrossings)(const EdgeCrossingCall* calls, std::size_t count, double isovalue, glm::dvec3* points);
 };
@@ -89,6 +86,15 @@ std::string stageExportsObject();
 // framework/stage_library/stage_prelude.h as precompiled when the framework
 // was built (the .gch beside it), or "" when that is gone.
 std::string stagePreludeHeader();
+
+// Where a stage library's headers are: framework/include, then each stage's
+// contract folder (framework/stages/STAGE/include), in name order.
+std::vector<std::string> stageIncludeDirs();
+
+// The folder of the generated voxlab/stage_contracts.h when it is not in
+// framework/include (an installed tree has it there): the build's, while
+// it is still there, or "".
+std::string stageContractsDir();
 
 // The command that builds a stage library from `sources` (paths relative to
 // `workingDir`, where it is run) into `output`: the compiler this framework

@@ -196,12 +196,15 @@ std::vector<std::string> toolchainPrograms() {
 // Builds `sources` (relative to `root`) into `lib`/stage_library.so, itself
 // sandboxed: a compiler can be told to read any file (#include "/etc/...",
 // an assembler's .incbin). It reads the snapshot, the framework's headers,
-// the prebuilt exports and prelude, and the system's toolchain; it writes
+// the stages' contracts (only their include/ folders), the prebuilt exports
+// and prelude, and the system's toolchain; it writes
 // only `lib`, its temporary files into a size-capped tmpfs there, no file
 // over 64 MiB.
 bool buildLibrary(const std::vector<std::string>& sources, const std::string& root, const fs::path& lib,
                   const ChildCgroup& cgroup, RunOutcome& outcome) {
-    std::vector<std::string> readable = {root, projectRoot() + "/framework/include", projectRoot() + "/framework/stage_library"};
+    std::vector<std::string> readable = {root, projectRoot() + "/framework/stage_library"};
+    for (const std::string& dir : stageIncludeDirs()) readable.push_back(dir);
+    if (const std::string generated = stageContractsDir(); !generated.empty()) readable.push_back(generated);
     if (const std::string exports = stageExportsObject(); !exports.empty()) readable.push_back(exports);
     const std::string prelude = stagePreludeHeader();
     if (!prelude.empty()) readable.insert(readable.end(), {prelude, prelude + ".gch"});

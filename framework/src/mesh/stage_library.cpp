@@ -5,9 +5,10 @@
 #include <dlfcn.h>
 #include <sys/stat.h>
 
+#include <algorithm>
+#include <filesystem>
+
 #include "voxlab/error.h"
-#include "voxlab/marching_cubes.h"
-#include "voxlab/proxy_geometry.h"
 
 namespace voxlab {
 
@@ -124,6 +125,9 @@ std::string prebuilt(const std::string& installedName, const char* builtPath) {
 }  // namespace
 
 // Builds without them (the browser's, the fuzzers') have no build paths.
+#ifndef VOXLAB_STAGE_CONTRACTS_DIR
+#define VOXLAB_STAGE_CONTRACTS_DIR nullptr
+#endif
 #ifndef VOXLAB_STAGE_EXPORTS_OBJECT
 #define VOXLAB_STAGE_EXPORTS_OBJECT nullptr
 #endif
@@ -139,16 +143,38 @@ std::string stagePreludeHeader() {
     return !header.empty() && regularFileExists(header + ".gch") ? header : "";
 }
 
+std::vector<std::string> stageIncludeDirs() {
+    std::vector<std::string> contracts;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(projectRoot() + "/framework/stages", ec)) {
+        const std::filesystem::path dir = entry.path() / "include";
+        if (std::filesystem::is_directory(dir, ec)) contracts.push_back(dir.string());
+    }
+    std::sort(contracts.begin(), contracts.end());
+    contracts.insert(contracts.begin(), projectRoot() + "/framework/include");
+    return contracts;
+}
+
+std::string stageContractsDir() {
+    if (regularFileExists(projectRoot() + "/framework/include/voxlab/stage_contracts.h")) return "";  // installed
+    const char* built = VOXLAB_STAGE_CONTRACTS_DIR;
+    return built && regularFileExists(std::string(built) + "/voxlab/stage_contracts.h") ? built : "";
+}
+
 // The flags are also framework/CMakeLists.txt's for the exports object and
 // the prelude: a precompiled header built with others is not used.
 std::vector<std::string> stageLibraryBuildCommand(const std::vector<std::string>& sources,
                                                   const std::string& output, const std::string& prelude) {
     std::vector<std::string> cmd = {VOXLAB_CXX_COMPILER, "-std=c++17", "-O1", "-fPIC", "-shared",
-                                    "-Wl,-Bsymbolic", "-DGLM_FORCE_CXX17",
-                                    "-I" + projectRoot() + "/framework/include"};
+                                    "-Wl,-Bsymbolic", "-DGLM_FORCE_CXX17"};
+    for (const std::string& dir : stageIncludeDirs()) cmd.push_back("-I" + dir);
+    const std::string exports = stageExportsObject();
+    // Without the prebuilt exports, their source is compiled, which reads the
+    // list generated from the contracts (voxlab/stage_contracts.h).
+    if (const std::string generated = stageContractsDir(); exports.empty() && !generated.empty())
+        cmd.push_back("-I" + generated);
     if (!prelude.empty()) cmd.insert(cmd.end(), {"-include", prelude});
     cmd.insert(cmd.end(), sources.begin(), sources.end());
-    const std::string exports = stageExportsObject();
     cmd.push_back(exports.empty() ? projectRoot() + "/framework/stage_library/stage_exports.cpp" : exports);
     cmd.push_back("-o");
     cmd.push_back(output);

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "voxlab/camera.h"
-#include "voxlab/proxy_geometry.h"
+#include "voxlab/slice_axis.h"
 #include "voxlab/stage_library.h"
 #include "voxlab/renderers.h"
 #include "voxlab/shader.h"

@@ -1,5 +1,6 @@
 // voxlab: splatting (Westover 1990), object-order volume rendering that
-// throws each voxel at the image as a blurred dot, for the splat renderer.
+// throws each voxel at the image as a blurred dot: the stage's C++ contract
+// and the framework's side of it.
 //
 // Each voxel that the transfer function does not hide becomes a Gaussian
 // blob of absorbing, emitting matter centred on the voxel, with standard
@@ -54,3 +55,7 @@ SplatOrder splatOrder(glm::dvec3 viewDirection);
 std::vector<glm::vec4> splatPoints(const Volume& volume, const TransferFunction& tf, const SplatOrder& order);
 
 }  // namespace voxlab
+
+// The stage's C++ functions for the stage table (voxlab/stage_library.h):
+// X(name, return type, parameter types).
+#define VOXLAB_STAGE_FUNCTIONS_splat(X) X(splatOrder, SplatOrder, (glm::dvec3))

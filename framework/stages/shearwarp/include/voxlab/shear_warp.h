@@ -1,5 +1,5 @@
 // voxlab: the shear-warp factorisation (Lacroute and Levoy, SIGGRAPH 1994)
-// for the shearwarp renderer, orthographic views.
+// for orthographic views: the shear-warp stage's C++ contract.
 //
 // Ray casting resamples the volume along every ray, at positions that fall
 // anywhere between voxels. Shear-warp chooses a frame in which every ray
@@ -43,7 +43,7 @@ struct ShearWarp {
     glm::dmat3 warp{1.0};        // (u, w, 1) -> (pixel x, pixel y, 1); column-major (glm)
 };
 
-// --- The shearwarp stage (C++; reference/shearwarp/) --------------------------
+// --- The stage (C++; reference/shearwarp/) ------------------------------------
 
 // The factorisation for an orthographic camera over a volume of `dims`
 // voxels with `spacing`, as above. Throws voxlab::Error for a perspective
@@ -51,3 +51,7 @@ struct ShearWarp {
 ShearWarp factorShearWarp(const Camera& camera, glm::ivec3 dims, glm::dvec3 spacing);
 
 }  // namespace voxlab
+
+// The stage's C++ functions for the stage table (voxlab/stage_library.h):
+// X(name, return type, parameter types).
+#define VOXLAB_STAGE_FUNCTIONS_shearwarp(X) X(factorShearWarp, ShearWarp, (const Camera&, glm::ivec3, glm::dvec3))

@@ -1,13 +1,12 @@
-// voxlab: proxy geometry for object-order (texture-slicing) renderers.
+// voxlab: proxy geometry for 3D texture slicing, the stage's C++ contract.
 //
 // Texture slicing draws the volume as a stack of semi-transparent polygons
 // and lets the GPU's blending do the compositing. The polygons are the
 // "proxy geometry": for 3D texture slicing, each is a plane perpendicular to
-// the view direction cut to the volume's box; for 2D slicing, a rectangle
-// across the box. The functions below are student stages written in C++:
-// their reference solutions live in reference/texslice3d/ and
-// reference/texslice2d/ (compiled into the framework from the stage root,
-// see CMakeLists.txt), and their declarations here are the contract.
+// the view direction cut to the volume's box. planeBoxPolygon is a student
+// stage written in C++: its reference solution lives in reference/texslice3d/
+// (compiled into the framework from the stage root, framework/CMakeLists.txt),
+// and its declaration here is the contract.
 #pragma once
 
 #include <vector>
@@ -29,11 +28,9 @@ namespace voxlab {
 // polygon; a plane containing a face gives that face.
 std::vector<glm::dvec3> planeBoxPolygon(glm::dvec3 normal, double offset, glm::dvec3 lo, glm::dvec3 hi);
 
-// 2D texture slicing keeps one stack of slices per axis and draws the stack
-// most nearly facing the viewer: the axis (0 x, 1 y, 2 z) along which the
-// view direction has its largest component in absolute value, so the stack
-// switches where the direction is at 45 degrees between two axes. Ties go
-// to the lower axis.
-int chooseSliceAxis(glm::dvec3 viewDirection);
-
 }  // namespace voxlab
+
+// The stage's C++ functions for the stage table (voxlab/stage_library.h):
+// X(name, return type, parameter types).
+#define VOXLAB_STAGE_FUNCTIONS_texslice3d(X) \
+    X(planeBoxPolygon, std::vector<glm::dvec3>, (glm::dvec3, double, glm::dvec3, glm::dvec3))

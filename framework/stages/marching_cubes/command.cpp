@@ -1,4 +1,4 @@
-// voxlab mesh: an isosurface as a triangle mesh file (marching cubes).
+// voxlab mesh: an isosurface as a triangle mesh file, extracted by this stage.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -9,6 +9,7 @@
 #include "voxlab/volume.h"
 
 namespace voxlab::cli {
+namespace {
 
 int meshCommand(int argc, char** argv) {
     const std::vector<OptionSpec> specs = {
@@ -19,7 +20,7 @@ int meshCommand(int argc, char** argv) {
     const Args args(specs, argc, argv, 2, "mesh");
     if (args.has("help") || args.positionals().size() != 1) {
         std::cout << "usage: voxlab mesh DATASET [--isovalue V] [--out FILE.ply|FILE.obj]\n\n"
-                     "Extracts the isosurface at V by marching cubes (the marching_cubes stage) and prints its\n"
+                     "Extracts the isosurface at V by marching cubes (the stage's C++ functions) and prints its\n"
                      "vertices, triangles, area, enclosed volume and whether it is closed; with --out, writes it\n"
                      "for MeshLab, ParaView or Blender. Coordinates are world units (voxel centre (i,j,k) at\n"
                      "(i+1/2, j+1/2, k+1/2) * spacing); triangles face the lower values.\n\n"
@@ -48,4 +49,9 @@ int meshCommand(int argc, char** argv) {
     return 0;
 }
 
+}  // namespace
 }  // namespace voxlab::cli
+
+VOXLAB_COMMANDS(marching_cubes) {
+    commands.push_back({"mesh", "DATASET", "an isosurface as a triangle mesh (marching cubes), .ply or .obj", &meshCommand});
+}

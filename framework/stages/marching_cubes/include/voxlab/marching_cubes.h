@@ -91,3 +91,9 @@ MeshMeasures measureMesh(const TriangleMesh& mesh);
 void saveMesh(const TriangleMesh& mesh, const std::string& path);
 
 }  // namespace voxlab
+
+// The stage's C++ functions for the stage table (voxlab/stage_library.h):
+// X(name, return type, parameter types).
+#define VOXLAB_STAGE_FUNCTIONS_marching_cubes(X)  \
+    X(cubeCase, int, (const double*, double)) \
+    X(edgeCrossing, glm::dvec3, (glm::dvec3, glm::dvec3, double, double, double))

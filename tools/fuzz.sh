@@ -5,7 +5,7 @@
 #
 # Builds the fuzz targets of tests/fuzz/ with clang in $VOXLAB_BUILD_DIR/fuzz
 # (the folder the main build's sub-build uses), then runs each TARGET (default:
-# all of them: nrrd nrrd_detached fld dat scene tf tf2d viewer_script) for RUNS
+# tests/fuzz/targets.cmake's VOXLAB_FUZZ_TARGETS but dicom, docs/fuzzing.md) for RUNS
 # executions (default 1000000), one after the other, and prints a table of
 # executions, wall time and findings. New inputs are kept in
 # $VOXLAB_BUILD_DIR/fuzz/work/TARGET, so later runs start from them; inputs
@@ -27,7 +27,10 @@ case "$runs" in
 esac
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-  targets=(nrrd nrrd_detached fld dat scene tf tf2d viewer_script)
+  # shellcheck disable=SC2207  # one word per target
+  targets=($(awk '/^set\(VOXLAB_FUZZ_TARGETS/ { on = 1; next }
+                  on { sub(/#.*/, ""); gsub(/\)/, " ) ");
+                       for (i = 1; i <= NF; i++) { if ($i == ")") exit; if ($i != "dicom") print $i } }' "$root/tests/fuzz/targets.cmake"))
 fi
 
 cxx="${VOXLAB_FUZZ_CXX:-$(command -v clang++-14 || command -v clang++ || true)}"

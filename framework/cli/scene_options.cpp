@@ -28,10 +28,10 @@ std::vector<OptionSpec> sceneOptions() {
         {"skip-empty-space", "on|off", "leap over bricks that cannot change the image (default on)"},
         {"gpu-memory", "MIB", "texture memory the volume may take; a larger volume is drawn in bricks (default: the driver's)"},
         {"window", "LO,HI", "grey window in data units (default: the data's min,max)"},
-        {"tf", "FILE", "1D transfer function (JSON control points)"},
+        {kTransferFunctionName, "FILE", "1D transfer function (JSON control points)"},
         {"background", "R,G,B", "background colour, 0..1 each"},
         {"param", "NAME=VALUE", "a renderer parameter (repeatable)"},
-        {"tf2d", "FILE", "2D transfer function (JSON widgets) for the tf2d renderer"},
+        {kTransferFunction2DName, "FILE", "2D transfer function (JSON widgets), for renderers that classify by value and gradient"},
         {"roi", "X0,Y0,Z0,X1,Y1,Z1", "crop to this box, in voxel coordinates (the volume is 0..dims)"},
         {"cut-normal", "NX,NY,NZ", "cutting plane: the scene's renderer draws the side this points into"},
         {"cut-point", "X,Y,Z", "cutting plane: a point on it, voxel coordinates (default: the centre)"},
@@ -247,13 +247,13 @@ Scene sceneFromArgs(const Args& args, const std::string& command, const Scene* b
         if (!(w[1] > w[0])) throw Error("option --window: HI must be greater than LO");
         scene.window = glm::dvec2(w[0], w[1]);
     }
-    if (auto v = args.get("tf")) scene.transferFunction = TransferFunction::load(resolveDataPath(*v));
+    if (auto v = args.get(kTransferFunctionName)) scene.transferFunction = TransferFunction::load(resolveDataPath(*v));
     if (auto v = args.get("background")) {
         const auto c = parseNumberList(*v, "--background", 3);
         scene.background = glm::vec3(c[0], c[1], c[2]);
     }
     for (const std::string& p : args.getAll("param")) parseParam(p, "param", &scene.parameters);
-    if (auto v = args.get("tf2d")) scene.transferFunction2D = TransferFunction2D::load(resolveDataPath(*v));
+    if (auto v = args.get(kTransferFunction2DName)) scene.transferFunction2D = TransferFunction2D::load(resolveDataPath(*v));
     if (auto v = args.get("roi")) {
         const auto r = parseNumberList(*v, "--roi", 6);
         scene.roi = RegionOfInterest{{r[0], r[1], r[2]}, {r[3], r[4], r[5]}};

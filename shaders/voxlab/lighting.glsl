@@ -35,7 +35,7 @@ vec3 light_direction() {
 }
 
 // The colour of a sample with gradient g seen along `ray`, lit when shading
-// is on (the tf2d renderer has g at hand: it classifies by its length).
+// is on (a renderer classifying in 2D has g at hand: it classifies by its length).
 vec3 shade_sample_with_gradient(vec3 colour, vec3 g, Ray ray) {
     if (u_shading == 0) return colour;
     float g_len = length(g);

@@ -13,7 +13,7 @@
 //     "parameters": {"offset": 0},           // the renderer's own, see `voxlab list`
 //     "transfer_function": [ {"value": 40, "color": [1,1,1], "alpha": 0}, ... ],
 //                                            // or a path to such a JSON file
-//     "tf2d": {"widgets": [...]},            // 2D transfer function (tf2d renderer),
+//     "tf2d": {"widgets": [...]},            // 2D transfer function (value and gradient),
 //                                            // or a path; see transfer_function_2d.h
 //     "roi": {"min": [0, 0, 10], "max": [256, 256, 90]},   // cropping box, voxel coordinates
 //     "cutting_plane": {                     // splits the view in two half-spaces

@@ -46,6 +46,11 @@ struct ControlPoint {
 // two equal entries, so the mapping above never divides by zero.
 constexpr int kTransferFunctionRowLength = 4096;
 
+// The 1D transfer function's short name, spelled here only: the --tf
+// option, the viewer script's command and panel, and the presets' folder
+// of a dataset folder (datasets/tf/).
+inline constexpr const char* kTransferFunctionName = "tf";
+
 struct TransferFunctionTable {
     double lo = 0.0;
     double hi = 1.0;

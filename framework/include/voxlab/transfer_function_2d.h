@@ -28,7 +28,7 @@
 // gradients.h, also used for the editor's 2D histogram (histogram2D()).
 // Opacities are per unit length, like the 1D transfer function's.
 //
-// JSON (the scene's "tf2d" section, or a file):
+// JSON (the scene's section of that name, kTransferFunction2DName, or a file):
 //   {"widgets": [
 //      {"type": "triangle", "value": 120, "radius": 1.5, "alpha": 0.8, "color": [1, 1, 1]},
 //      {"type": "box", "value": [40, 80], "gradient": [0, 5], "alpha": 0.05, "color": [0, 0.6, 0]}
@@ -45,6 +45,11 @@ namespace voxlab {
 
 // At most this many widgets (the shader keeps them in uniform arrays).
 constexpr int kMaxTf2dWidgets = 16;
+
+// The 2D transfer function's short name, spelled here only: the scene's
+// section, the --NAME option, the viewer script's command and panel, and
+// the presets' folder of a dataset folder (datasets/NAME/).
+inline constexpr const char* kTransferFunction2DName = "tf2d";
 
 struct Tf2dWidget {
     enum class Kind { Triangle, Box };
@@ -71,7 +76,7 @@ public:
     // magnitude g, by the formulas above. For previews on the CPU.
     glm::vec4 evaluate(double f, double g) const;
 
-    // Errors name the entry and key: "scene.json: tf2d.widgets[1].radius: expected a number > 0".
+    // Errors name the entry and key: "scene.json: KEY.widgets[1].radius: expected a number > 0".
     static TransferFunction2D fromJson(const nlohmann::json& j, const std::string& where,
                                        const std::string& key = "");
     static TransferFunction2D load(const std::string& path);

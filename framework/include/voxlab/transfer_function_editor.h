@@ -202,12 +202,12 @@ bool TransferFunctionUndoRedo(TransferFunction2DHistory* history, TransferFuncti
 // ---------------------------------------------------------------------------
 // Presets and files.
 //
-// The JSON files in the `folder` ("tf" or "tf2d") of each dataset folder
+// The JSON files in the `folder` (kTransferFunctionName or kTransferFunction2DName) of each dataset folder
 // (those of $VOXLAB_DATA_PATH, then the project's datasets/): first those
 // whose name starts with the dataset's stem ("bonsai" for "bonsai",
 // "bonsai.nrrd", ".../bonsai.nrrd" or "phantom:bonsai:64"), then all others,
 // each group sorted by name. Missing folders are skipped.
-std::vector<std::string> transferFunctionPresets(const std::string& datasetName, const std::string& folder = "tf");
+std::vector<std::string> transferFunctionPresets(const std::string& datasetName, const std::string& folder = kTransferFunctionName);
 
 // What the buttons do, without a window: load (a relative path is found
 // through the dataset search path) or save as JSON. On success *tf (or the

@@ -12,7 +12,7 @@
 //   step X                         sampling step (voxels), > 0
 //   interpolation nearest|trilinear|hardware|bspline|catmull-rom
 //   tf PATH|none                   a transfer-function file, or none
-//   tf2d PATH|none                 a 2D transfer-function file (tf2d renderer), or none
+//   tf2d PATH|none                 a 2D transfer-function file, or none
 //   camera SETTING VALUE...        settings: azimuth A, elevation E, distance D,
 //                                  fov F, zoom Z, pan X Y, view +x|-x|+y|-y|+z|-z,
 //                                  projection perspective|orthographic
@@ -89,6 +89,12 @@ bool onOff(const ViewerStep& step, int i);  // "on" or "off"
 // A data file named by argument i, found like the CLI does (resolveDataPath),
 // also looking in the script's folder.
 std::string dataPath(const ViewerStep& step, int i);
+
+// The panels of `panel NAME on|off` (the transfer-function panel by either
+// function's short name), and the same as a list for messages: "slices, tf,
+// ... help or controls".
+const std::vector<std::string>& viewerPanels();
+std::string viewerPanelList();
 
 // Applies a "camera" step's settings, in order, to a camera. Setting azimuth
 // or elevation leaves an axis view for the equivalent orbit first; "view"

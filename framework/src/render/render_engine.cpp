@@ -345,7 +345,7 @@ ShaderConstants RenderEngine::switchesFor(const Scene& scene, const Pass& pass, 
         if (p.type == ParameterType::Bool) constants["u_" + p.name] = pass.values.at(p.name) != 0.0 ? 1 : 0;
     // The widget count makes a stage's loop over the widgets one with a
     // constant bound: it unrolls, and each widget's uniforms are read
-    // directly instead of gathered per pixel (bonsai tf2d at 512x512 on
+    // directly instead of gathered per pixel (bonsai classified in 2D, 512x512 on
     // llvmpipe: 1.4-1.6 s to 0.8-0.9 s a frame, the same images). Adding or
     // removing a widget compiles again; moving one does not.
     if (renderer.needsTransferFunction2D()) constants["u_tf2d_count"] = int(inputs.widgets.size());

@@ -360,7 +360,7 @@ std::vector<ClipPlane> Parser::clipPlanes(const json& j) const {
 Scene Parser::parse(const json& j) const {
     if (!j.is_object()) throw Error((where_.empty() ? "" : where_ + ": ") + "expected a JSON object");
     onlyKeys(j, "", {"dataset", "renderer", "camera", "projection", "size", "sampling", "window",
-                     "background", "parameters", "transfer_function", "tf2d", "roi", "cutting_plane", "labels",
+                     "background", "parameters", "transfer_function", kTransferFunction2DName, "roi", "cutting_plane", "labels",
                      "fusion", "clip_planes", "gpu_memory"});
     Scene s;
 
@@ -416,14 +416,14 @@ Scene Parser::parse(const json& j) const {
 
     if (j.contains("parameters")) s.parameters = parameters(j["parameters"], "parameters");
     if (j.contains("transfer_function")) s.transferFunction = transferFunction(j["transfer_function"], "transfer_function");
-    if (j.contains("tf2d")) {
-        const json& t = j["tf2d"];
+    if (j.contains(kTransferFunction2DName)) {
+        const json& t = j[kTransferFunction2DName];
         if (t.is_string()) {
             const std::string name = t.get<std::string>();
             s.transferFunction2D =
-                located("tf2d", [&] { return TransferFunction2D::load(resolveDataPath(name, baseDir_)); });
+                located(kTransferFunction2DName, [&] { return TransferFunction2D::load(resolveDataPath(name, baseDir_)); });
         } else {
-            s.transferFunction2D = TransferFunction2D::fromJson(t, where_, "tf2d");
+            s.transferFunction2D = TransferFunction2D::fromJson(t, where_, kTransferFunction2DName);
         }
     }
     if (j.contains("roi")) s.roi = roi(j["roi"]);
@@ -496,7 +496,7 @@ json Scene::toJson() const {
     j["parameters"] = json::object();
     for (const auto& [name, value] : parameters) j["parameters"][name] = value;
     if (transferFunction) j["transfer_function"] = transferFunction->toJson();
-    if (transferFunction2D) j["tf2d"] = transferFunction2D->toJson();
+    if (transferFunction2D) j[kTransferFunction2DName] = transferFunction2D->toJson();
     if (roi) j["roi"] = {{"min", {roi->min.x, roi->min.y, roi->min.z}}, {"max", {roi->max.x, roi->max.y, roi->max.z}}};
     if (cuttingPlane) {
         const CuttingPlane& c = *cuttingPlane;

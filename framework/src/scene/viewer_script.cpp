@@ -2,6 +2,7 @@
 #include "voxlab/viewer_script.h"
 #include "voxlab/number_text.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -95,7 +96,7 @@ public:
         if (c == "renderer") return exactly(1, "expected 1 renderer name");
         if (c == "implementation") return exactly(1, "expected a folder or 'reference'");
         if (c == "screenshot") return exactly(1, "expected 1 output path");
-        if (c == "tf" || c == "tf2d") return exactly(1, "expected 1 path or 'none'");
+        if (c == kTransferFunctionName || c == kTransferFunction2DName) return exactly(1, "expected 1 path or 'none'");
         if (c == "press") {
             if (step_.args.empty()) fail("expected one or more keys");
             for (int i = 0; i < int(step_.args.size()); ++i)
@@ -176,9 +177,10 @@ public:
         if (c == "samples" || c == "skipping" || c == "lod") return oneWord("expected on or off", {"on", "off"});
         if (c == "split") return oneWord("expected on, off or difference", {"on", "off", "difference"});
         if (c == "panel") {
-            const char* msg = "expected a panel (slices, tf, tf2d, profile, help or controls) and on or off";
+            const std::string msg = "expected a panel (" + viewerPanelList() + ") and on or off";
             exactly(2, msg);
-            if (!isOneOf(arg(0), {"slices", "tf", "tf2d", "profile", "help", "controls"})) fail(msg, 0);
+            const std::vector<std::string>& panels = viewerPanels();
+            if (std::find(panels.begin(), panels.end(), arg(0)) == panels.end()) fail(msg, 0);
             if (!isOneOf(arg(1), {"on", "off"})) fail(msg, 1);
             return;
         }
@@ -256,10 +258,24 @@ private:
 };
 
 constexpr const char* kCommands[] = {
-    "load", "scene", "renderer", "param", "step", "interpolation", "tf", "tf2d", "camera", "rotate",
+    "load", "scene", "renderer", "param", "step", "interpolation", kTransferFunctionName, kTransferFunction2DName, "camera", "rotate",
     "key", "press", "rendering", "ui-scale", "slide", "enlarge", "window", "samples", "skipping", "lod", "split", "divider", "right", "drag", "drag-plane", "implementation", "panel", "click", "size", "wait", "screenshot", "quit"};
 
 }  // namespace
+
+const std::vector<std::string>& viewerPanels() {
+    static const std::vector<std::string> panels = {"slices", kTransferFunctionName, kTransferFunction2DName,
+                                                    "profile", "help", "controls"};
+    return panels;
+}
+
+std::string viewerPanelList() {
+    std::string list;
+    const std::vector<std::string>& panels = viewerPanels();
+    for (std::size_t i = 0; i < panels.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == panels.size() ? " or " : ", ") + panels[i];
+    return list;
+}
 
 std::vector<ViewerStep> parseViewerScriptText(const std::string& text, const std::string& name) {
     std::vector<ViewerStep> steps;

@@ -204,12 +204,12 @@ bool saveTransferFunctionFile(const std::string& path, const TransferFunction2D&
 
 bool TransferFunctionFiles(const char* label, TransferFunction* tf, const std::string& datasetName, std::string* path,
                            std::string* message) {
-    return filesWidget(label, tf, datasetName, path, message, "tf");
+    return filesWidget(label, tf, datasetName, path, message, kTransferFunctionName);
 }
 
 bool TransferFunction2DFiles(const char* label, TransferFunction2D* tf, const std::string& datasetName,
                              std::string* path, std::string* message) {
-    return filesWidget(label, tf, datasetName, path, message, "tf2d");
+    return filesWidget(label, tf, datasetName, path, message, kTransferFunction2DName);
 }
 
 }  // namespace voxlab

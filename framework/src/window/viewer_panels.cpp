@@ -238,12 +238,13 @@ void techniquePanel(State& s) {
     sceneFileSection(s);
 }
 
-// What the 2D editor starts from: the dataset's preset (datasets/tf2d/),
+// What the 2D editor starts from: the dataset's preset (datasets/NAME/, NAME
+// kTransferFunction2DName),
 // else one triangle at the middle of the window.
 TransferFunction2D startingTransferFunction2D(const State& s) {
     const std::string stem = std::filesystem::path(s.volume->name()).stem().string();
     try {
-        return TransferFunction2D::load(resolveDataPath("tf2d/" + stem + ".json"));
+        return TransferFunction2D::load(resolveDataPath(std::string(kTransferFunction2DName) + "/" + stem + ".json"));
     } catch (const Error&) {
     }
     const glm::dvec2 w = s.scene.window.value_or(s.volume->valueRange());
@@ -274,7 +275,7 @@ void transferFunctionPanel(State& s) {
     if (renderer && renderer->needsTransferFunction2D()) {  // asked of the renderer, not its name
         if (!s.histogram2D) s.histogram2D = histogram2D(volume);
         if (!s.scene.transferFunction2D) s.scene.transferFunction2D = startingTransferFunction2D(s);
-        if (TransferFunction2DEditor("##tf2d", &*s.scene.transferFunction2D, *s.histogram2D, &s.selectedWidget))
+        if (TransferFunction2DEditor("##2d", &*s.scene.transferFunction2D, *s.histogram2D, &s.selectedWidget))
             s.dirty = true;
         return ImGui::End();
     }

@@ -46,11 +46,11 @@ bool sceneStep(State& s, const ViewerStep& st) {
         s.scene.step = number(st, 0);
     } else if (c == "interpolation") {
         s.scene.interpolation = parseInterpolation(word(st, 0));
-    } else if (c == "tf") {
+    } else if (c == kTransferFunctionName) {
         s.tfPath = word(st, 0) == "none" ? "" : dataPath(st, 0);  // the panel shows its name
         if (word(st, 0) == "none") s.scene.transferFunction.reset();
         else s.scene.transferFunction = TransferFunction::load(s.tfPath);
-    } else if (c == "tf2d") {
+    } else if (c == kTransferFunction2DName) {
         if (word(st, 0) == "none") s.scene.transferFunction2D.reset();
         else s.scene.transferFunction2D = TransferFunction2D::load(dataPath(st, 0));
     } else if (c == "camera") {
@@ -90,11 +90,11 @@ bool viewStep(State& s, const ViewerStep& st) {
         const std::string& p = word(st, 0);
         const bool on = onOff(st, 1);
         if (p == "slices") s.showSlices = on;
-        else if (p == "tf" || p == "tf2d") s.showTransferFunction = on;
+        else if (p == kTransferFunctionName || p == kTransferFunction2DName) s.showTransferFunction = on;
         else if (p == "profile") s.showProfile = on;
         else if (p == "help") s.showHelp = on;
         else if (p == "controls") s.showPanel = on;
-        else failStep(st, "unknown panel '" + p + "' (slices, tf, tf2d, profile, help, controls)");
+        else failStep(st, "unknown panel '" + p + "' (" + viewerPanelList() + ")");
     } else if (c == "enlarge") {
         const std::string& v = word(st, 0);
         s.showSlices = true;

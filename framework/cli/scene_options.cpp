@@ -105,7 +105,7 @@ void parseCuttingPlane(const Args& args, Scene* scene) {
                      args.has("cut-tf") || !args.getAll("cut-param").empty();
     if (!any) return;
     if (!scene->cuttingPlane && !args.has("cut-normal"))
-        throw Error("option --cut-*: the cutting plane needs --cut-normal (or a scene with \"cutting_plane\")");
+        throw Error("option --cut-*: the cutting plane needs --cut-normal (or a scene with a cutting plane)");
     CuttingPlane& cut = scene->cuttingPlane ? *scene->cuttingPlane : scene->cuttingPlane.emplace();
     if (auto v = args.get("cut-normal")) {
         const auto n = parseNumberList(*v, "--cut-normal", 3);

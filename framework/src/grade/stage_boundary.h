@@ -3,7 +3,7 @@
 //
 // A graded GLSL stage is compiled together with other stages' reference
 // code: its prerequisites, and the stages the framework's own shaders pull
-// in (volume.glsl includes sampling and cubic, ray.glsl cutting_plane,
+// in (volume.glsl includes sampling and cubic, ray.glsl the cutting plane's,
 // lighting.glsl shading, ...). Another stage's reference may solve the
 // graded one (attenuated MIP with no attenuation is MIP), so the grader
 // checks the submission's GLSL before it runs: it may include only its own

@@ -60,6 +60,10 @@ const LabelClass* LabelMap::find(int label) const {
 
 namespace {
 
+// The cutting plane's section of a scene, spelled here only.
+constexpr const char* kCutKey = "cutting_plane";
+const std::string kCut = kCutKey;
+
 using json = nlohmann::json;
 
 // Reads one scene; `where` is the file name used in every message.
@@ -197,15 +201,15 @@ RegionOfInterest Parser::roi(const json& j) const {
 }
 
 CuttingPlane Parser::cuttingPlane(const json& j) const {
-    if (!j.is_object()) fail("cutting_plane", "expected an object {\"point\", \"normal\", \"other_side\"}");
-    onlyKeys(j, "cutting_plane", {"point", "normal", "other_side"});
+    if (!j.is_object()) fail(kCut, "expected an object {\"point\", \"normal\", \"other_side\"}");
+    onlyKeys(j, kCut, {"point", "normal", "other_side"});
     CuttingPlane c;
-    if (j.contains("point")) c.point = vec3(j["point"], "cutting_plane.point");
-    if (j.contains("normal")) c.normal = vec3(j["normal"], "cutting_plane.normal");
-    if (glm::length(c.normal) <= 0.0) fail("cutting_plane.normal", "must not be zero");
+    if (j.contains("point")) c.point = vec3(j["point"], kCut + ".point");
+    if (j.contains("normal")) c.normal = vec3(j["normal"], kCut + ".normal");
+    if (glm::length(c.normal) <= 0.0) fail(kCut + ".normal", "must not be zero");
     if (j.contains("other_side")) {
         const json& o = j["other_side"];
-        const std::string key = "cutting_plane.other_side";
+        const std::string key = kCut + ".other_side";
         if (!o.is_object()) fail(key, "expected an object {\"renderer\", \"transfer_function\", \"parameters\"}");
         onlyKeys(o, key, {"renderer", "transfer_function", "parameters"});
         if (o.contains("renderer")) c.otherRenderer = string(o["renderer"], key + ".renderer");
@@ -360,7 +364,7 @@ std::vector<ClipPlane> Parser::clipPlanes(const json& j) const {
 Scene Parser::parse(const json& j) const {
     if (!j.is_object()) throw Error((where_.empty() ? "" : where_ + ": ") + "expected a JSON object");
     onlyKeys(j, "", {"dataset", "renderer", "camera", "projection", "size", "sampling", "window",
-                     "background", "parameters", "transfer_function", kTransferFunction2DName, "roi", "cutting_plane", "labels",
+                     "background", "parameters", "transfer_function", kTransferFunction2DName, "roi", kCutKey, "labels",
                      "fusion", "clip_planes", "gpu_memory"});
     Scene s;
 
@@ -427,7 +431,7 @@ Scene Parser::parse(const json& j) const {
         }
     }
     if (j.contains("roi")) s.roi = roi(j["roi"]);
-    if (j.contains("cutting_plane")) s.cuttingPlane = cuttingPlane(j["cutting_plane"]);
+    if (j.contains(kCut)) s.cuttingPlane = cuttingPlane(j[kCut]);
     if (j.contains("labels")) s.labels = labels(j["labels"]);
     if (j.contains("fusion")) s.fusion = fusion(j["fusion"]);
     if (j.contains("clip_planes")) s.clipPlanes = clipPlanes(j["clip_planes"]);
@@ -506,7 +510,7 @@ json Scene::toJson() const {
         for (const auto& [name, value] : c.otherParameters) other["parameters"][name] = value;
         if (c.otherTransferFunction) other["transfer_function"] = c.otherTransferFunction->toJson();
         cut["other_side"] = other;
-        j["cutting_plane"] = cut;
+        j[kCut] = cut;
     }
     if (labels) j["labels"] = labelsJson(*labels);
     if (fusion) j["fusion"] = fusionJson(*fusion);

@@ -1,11 +1,10 @@
-// Proxy geometry for texture slicing, checked on the CPU (no GL):
-//  - planeBoxPolygon against an oracle written here by a different method:
+// Proxy geometry for 3D texture slicing, checked on the CPU (no GL):
+//  planeBoxPolygon against an oracle written here by a different method:
 //    Sutherland-Hodgman clipping of a large square lying in the plane by the
 //    box's six half-spaces (the reference instead intersects the box's 12
 //    edges and sorts the crossings by angle). Thousands of random planes and
 //    boxes, plus the degenerate cuts the contract names (faces, edges,
-//    corners, misses, zero normals);
-//  - chooseSliceAxis on both sides of the 45-degree switch and on the ties.
+//    corners, misses, zero normals).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,7 +17,6 @@
 #include <vector>
 
 #include "voxlab/proxy_geometry.h"
-#include "voxlab/slice_axis.h"
 
 namespace voxlab::testing {
 namespace {
@@ -670,66 +668,6 @@ TEST(ProxyGeometry, ExtremeNormalLengths) {
         SCOPED_TRACE(s);
         EXPECT_EQ(planeBoxPolygon({s, 0, 0}, 0.5 * s, cube.lo, cube.hi).size(), 4u);
     }
-}
-
-// ---------------------------------------------------------------------------
-// chooseSliceAxis.
-
-TEST(SliceAxis, AxisAlignedDirections) {
-    for (int axis = 0; axis < 3; ++axis)
-        for (double s : {1.0, -1.0, 0.01, -250.0}) {
-            dvec3 d(0.0);
-            d[axis] = s;
-            EXPECT_EQ(chooseSliceAxis(d), axis) << str(d);
-        }
-}
-
-TEST(SliceAxis, SwitchesAt45Degrees) {
-    // Turning from axis i towards axis j (either way round, either overall
-    // sign, with or without a small third component): axis i up to 45
-    // degrees, axis j beyond.
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-            if (i == j) continue;
-            const int k = 3 - i - j;
-            for (double degrees : {44.0, 46.0, 10.0, 80.0, 44.999, 45.001})
-                for (double sj : {1.0, -1.0})
-                    for (double overall : {1.0, -1.0})
-                        for (double third : {0.0, 0.1, -0.3}) {
-                            const double t = degrees * kPi / 180.0;
-                            dvec3 d(0.0);
-                            d[i] = std::cos(t);
-                            d[j] = sj * std::sin(t);
-                            d[k] = third;
-                            d *= overall;
-                            EXPECT_EQ(chooseSliceAxis(d), degrees < 45.0 ? i : j) << degrees << " deg " << str(d);
-                        }
-        }
-}
-
-TEST(SliceAxis, TiesGoToTheLowerAxis) {
-    // Components equal in absolute value (exactly, whatever the signs).
-    struct Case {
-        dvec3 d;
-        int axis;
-    };
-    for (const Case& c : std::vector<Case>{{{1, 1, 0}, 0},
-                                           {{-1, 1, 0}, 0},
-                                           {{1, -1, 0.5}, 0},
-                                           {{1, 0, 1}, 0},
-                                           {{-2, 0.3, -2}, 0},
-                                           {{0, 1, 1}, 1},
-                                           {{0.2, -3, 3}, 1},
-                                           {{0, -1, -1}, 1},
-                                           {{1, 1, 1}, 0},
-                                           {{-1, -1, -1}, 0},
-                                           {{0.5, -0.5, 0.5}, 0},
-                                           {{-1, 1, 1}, 0}})
-        EXPECT_EQ(chooseSliceAxis(c.d), c.axis) << str(c.d);
-    // Just off the tie the larger component wins.
-    EXPECT_EQ(chooseSliceAxis({1, std::nextafter(1.0, 2.0), 0}), 1);
-    EXPECT_EQ(chooseSliceAxis({0, 1, std::nextafter(1.0, 2.0)}), 2);
-    EXPECT_EQ(chooseSliceAxis({std::nextafter(1.0, 2.0), 1, 1}), 0);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // voxlab CLI: option parsing (see args.h).
 #include "args.h"
 
+#include <iostream>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -46,6 +47,13 @@ std::vector<std::string> Args::getAll(const std::string& name) const {
     auto range = values_.equal_range(name);
     for (auto it = range.first; it != range.second; ++it) out.push_back(it->second);
     return out;
+}
+
+std::optional<int> usageExit(const Args& args, bool wrong, const std::string& usage,
+                             const std::vector<OptionSpec>& specs) {
+    if (!args.has("help") && !wrong) return std::nullopt;
+    std::cout << usage << formatOptions(specs);
+    return args.has("help") ? 0 : 2;
 }
 
 std::string formatOptions(const std::vector<OptionSpec>& specs) {

@@ -36,6 +36,12 @@ private:
 // "  --size WxH      image size in pixels" lines for --help.
 std::string formatOptions(const std::vector<OptionSpec>& specs);
 
+// What a command does when asked for --help, or called wrongly (`wrong`):
+// prints `usage` and the options, and gives the exit status (0 for --help,
+// 2 otherwise); std::nullopt when the command should run.
+std::optional<int> usageExit(const Args& args, bool wrong, const std::string& usage,
+                             const std::vector<OptionSpec>& specs);
+
 // Strict number parsing for option values; errors name the option.
 double parseNumber(const std::string& text, const std::string& option);
 int parseInt(const std::string& text, const std::string& option);

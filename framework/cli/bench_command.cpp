@@ -282,15 +282,14 @@ void printText(const Scene& scene, const Volume& volume, const Renderer& rendere
 int benchCommand(int argc, char** argv) {
     const std::vector<OptionSpec> specs = benchOptions();
     const Args args(specs, argc, argv, 2, "bench");
-    if (args.has("help")) {
-        std::cout << "usage: voxlab bench [SCENE.json] [--frames N] [--json] [scene options]\n\n"
-                     "Renders the scene headless frame after frame, turning the camera a little between\n"
-                     "frames, and prints the median and spread of the time per frame and, for the\n"
-                     "ray-casting renderers, the samples per second and the share of them skipped (empty\n"
-                     "space, early termination), counted on the GPU. See docs/performance.md.\n\n"
-                  << formatOptions(specs);
-        return 0;
-    }
+    if (auto status = usageExit(args, false,
+                                "usage: voxlab bench [SCENE.json] [--frames N] [--json] [scene options]\n\n"
+                                "Renders the scene headless frame after frame, turning the camera a little between\n"
+                                "frames, and prints the median and spread of the time per frame and, for the\n"
+                                "ray-casting renderers, the samples per second and the share of them skipped (empty\n"
+                                "space, early termination), counted on the GPU. See docs/performance.md.\n\n",
+                                specs))
+        return *status;
     Scene scene = sceneFromArgs(args, "bench");
     BenchFigures f;
     f.frames = args.get("frames") ? parseInt(*args.get("frames"), "--frames") : 10;

@@ -8,6 +8,7 @@
 
 #include "args.h"
 #include "voxlab/scene.h"
+#include "voxlab/volume.h"
 
 namespace voxlab::cli {
 
@@ -45,6 +46,9 @@ std::vector<OptionSpec> sceneOptions();
 // checking the value. sceneFromArgs applies it.
 OptionSpec volumeCapOption();
 void applyVolumeCapOption(const Args& args);
+// The dataset named by the first positional argument (found like every
+// dataset name, resolveDataPath), loaded under --max-volume-mib.
+Volume loadDatasetArgument(const Args& args);
 // Builds a scene from `base` when given, else from the scene file named by
 // the first positional argument, then applies the flags on top.
 Scene sceneFromArgs(const Args& args, const std::string& command, const Scene* base = nullptr);

@@ -16,14 +16,13 @@ int compareCommand(int argc, char** argv) {
         {"diff", "FILE.png", "also write the difference |A - B| per channel, times 4 (black: equal)"},
         {"help", "", "show this help"}};
     const Args args(specs, argc, argv, 2, "compare");
-    if (args.has("help") || args.positionals().size() != 2) {
-        std::cout << "usage: voxlab compare A.png B.png [--threshold T] [--diff FILE.png]\n\n"
-                     "Compares two images of the same size (for example your render and a golden image in\n"
-                     "tests/golden/images/) and prints the largest and mean per-pixel difference, the share\n"
-                     "of pixels above the threshold, PSNR and SSIM (mean and worst window).\n\n"
-                  << formatOptions(specs);
-        return args.has("help") ? 0 : 2;
-    }
+    if (auto status = usageExit(args, args.positionals().size() != 2,
+                                "usage: voxlab compare A.png B.png [--threshold T] [--diff FILE.png]\n\n"
+                                "Compares two images of the same size (for example your render and a golden image in\n"
+                                "tests/golden/images/) and prints the largest and mean per-pixel difference, the share\n"
+                                "of pixels above the threshold, PSNR and SSIM (mean and worst window).\n\n",
+                                specs))
+        return *status;
     const double threshold = args.get("threshold") ? parseNumber(*args.get("threshold"), "--threshold") : 2.0;
     if (!(threshold >= 0.0 && threshold <= 255.0)) throw Error("option --threshold: must be in 0..255");
     const Image a = loadPng(args.positionals()[0]), b = loadPng(args.positionals()[1]);

@@ -308,25 +308,24 @@ int gradeCommand(int argc, char** argv) {
         return 0;
     }
     if (args.has("prepare")) return prepareCache(args);
-    if (args.has("help") || args.has("submission") == args.has("batch")) {
-        std::cout << "usage: voxlab grade --submission DIR|FILE.zip [--stage S]... [--out REPORT_DIR]\n"
-                     "       voxlab grade --batch DIR [--out DIR] [--jobs N]\n\n"
-                     "Grades a submission stage by stage against the reference solution: every grading scene\n"
-                     "(reference/<stage>/grading.json) is rendered by both and compared (pixel difference, SSIM,\n"
-                     "FLIP), and function checks run on random inputs. Each stage runs in its own process with a\n"
-                     "time limit and a memory cap. Writes REPORT_DIR/index.html (open it in a browser),\n"
-                     "report.json and results.json (Gradescope). --batch grades each folder and .zip file of DIR\n"
-                     "into OUT/<name>/ (a name that is not a safe folder name gets one) and writes\n"
-                     "OUT/gradebook.csv, OUT/index.html, and OUT/similarity.html: pairs whose stage code is\n"
-                     "alike, as evidence for you to judge. An upload may be the assignments/ folder, its\n"
-                     "contents, a folder with it nested inside, loose stage files, or a zip of any of these;\n"
-                     "it is copied once before grading (links and special files are left out). One that\n"
-                     "cannot be graded gets a report and a gradebook row saying why.\n"
-                     "--assignment FILE (courses/*.json) chooses the stages, their points, each test's\n"
-                     "visibility in results.json and the late policy (with --submitted-at).\n\n"
-                  << formatOptions(specs);
-        return args.has("help") ? 0 : 2;
-    }
+    if (auto status = usageExit(args, args.has("submission") == args.has("batch"),
+                                "usage: voxlab grade --submission DIR|FILE.zip [--stage S]... [--out REPORT_DIR]\n"
+                                "       voxlab grade --batch DIR [--out DIR] [--jobs N]\n\n"
+                                "Grades a submission stage by stage against the reference solution: every grading scene\n"
+                                "(reference/<stage>/grading.json) is rendered by both and compared (pixel difference, SSIM,\n"
+                                "FLIP), and function checks run on random inputs. Each stage runs in its own process with a\n"
+                                "time limit and a memory cap. Writes REPORT_DIR/index.html (open it in a browser),\n"
+                                "report.json and results.json (Gradescope). --batch grades each folder and .zip file of DIR\n"
+                                "into OUT/<name>/ (a name that is not a safe folder name gets one) and writes\n"
+                                "OUT/gradebook.csv, OUT/index.html, and OUT/similarity.html: pairs whose stage code is\n"
+                                "alike, as evidence for you to judge. An upload may be the assignments/ folder, its\n"
+                                "contents, a folder with it nested inside, loose stage files, or a zip of any of these;\n"
+                                "it is copied once before grading (links and special files are left out). One that\n"
+                                "cannot be graded gets a report and a gradebook row saying why.\n"
+                                "--assignment FILE (courses/*.json) chooses the stages, their points, each test's\n"
+                                "visibility in results.json and the late policy (with --submitted-at).\n\n",
+                                specs))
+        return *status;
     GraderOptions options = limitsFrom(args);
     options.referenceRoot = args.get("reference").value_or(projectRoot() + "/reference");
     const fs::path out = args.get("out").value_or("grade-report");
@@ -347,16 +346,15 @@ int checkCommand(int argc, char** argv) {
     std::vector<OptionSpec> specs = {{"submission", "DIR", "the tree to check (default: the project's assignments/)"}};
     for (const OptionSpec& s : limitOptions()) specs.push_back(s);
     const Args args(specs, argc, argv, 2, "check");
-    if (args.has("help")) {
-        std::cout << "usage: voxlab check [--stage S]... [--out DIR]\n\n"
-                     "Checks your work in assignments/ the way the grader will: every grading scene of each\n"
-                     "stage is rendered with your code and compared with the expected image (shipped in\n"
-                     "expected/ with a student release, else rendered from reference/). Prints a table and\n"
-                     "writes DIR/index.html (default voxlab-check/) with your image, the expected one and a\n"
-                     "heat map of the differences for every scene. Exit status 0 when every stage checked passes.\n\n"
-                  << formatOptions(specs);
-        return 0;
-    }
+    if (auto status = usageExit(args, false,
+                                "usage: voxlab check [--stage S]... [--out DIR]\n\n"
+                                "Checks your work in assignments/ the way the grader will: every grading scene of each\n"
+                                "stage is rendered with your code and compared with the expected image (shipped in\n"
+                                "expected/ with a student release, else rendered from reference/). Prints a table and\n"
+                                "writes DIR/index.html (default voxlab-check/) with your image, the expected one and a\n"
+                                "heat map of the differences for every scene. Exit status 0 when every stage checked passes.\n\n",
+                                specs))
+        return *status;
     GraderOptions options = limitsFrom(args);
     options.isolateStage = false;
     options.hiddenScenes = false;

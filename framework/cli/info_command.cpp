@@ -40,16 +40,14 @@ int infoCommand(int argc, char** argv) {
                                            volumeCapOption(),
                                            {"help", "", "show this help"}};
     const Args args(specs, argc, argv, 2, "info");
-    if (args.has("help") || args.positionals().size() != 1) {
-        std::cout << "usage: voxlab info DATASET [--bins N] [--max-volume-mib MIB]\n\n"
-                     "Prints a volume's dimensions, voxel type, spacing, value range and histogram.\n"
-                     "DATASET is a file (.nrrd .nhdr .fld .dat), a DICOM series (a folder, or one of\n"
-                     "its files), or a phantom (phantom:NAME[:N]).\n\n"
-                  << formatOptions(specs);
-        return args.has("help") ? 0 : 2;
-    }
-    applyVolumeCapOption(args);
-    const Volume v = loadVolume(resolveDataPath(args.positionals()[0]));
+    if (auto status = usageExit(args, args.positionals().size() != 1,
+                                "usage: voxlab info DATASET [--bins N] [--max-volume-mib MIB]\n\n"
+                                "Prints a volume's dimensions, voxel type, spacing, value range and histogram.\n"
+                                "DATASET is a file (.nrrd .nhdr .fld .dat), a DICOM series (a folder, or one of\n"
+                                "its files), or a phantom (phantom:NAME[:N]).\n\n",
+                                specs))
+        return *status;
+    const Volume v = loadDatasetArgument(args);
     const int bins = args.get("bins") ? parseInt(*args.get("bins"), "--bins") : 64;
     if (bins < 1 || bins > 4096) throw Error("option --bins: must be in 1..4096");
     const Histogram h = v.histogram(bins);

@@ -13,12 +13,12 @@ int listCommand(int argc, char** argv) {
     const std::vector<OptionSpec> specs = {{"help", "", "show this help"},
                                            {"checks", "", "list the function checks instead (name, stage, what)"}};
     const Args args(specs, argc, argv, 2, "list");
-    if (args.has("help")) {
-        std::cout << "usage: voxlab list [--checks]\n\nNames every renderer with a one-line description and its "
-                     "parameters;\nwith --checks, every function check a manifest may name, its stage and what it "
-                     "runs.\n";
-        return 0;
-    }
+    if (auto status = usageExit(args, false,
+                                "usage: voxlab list [--checks]\n\nNames every renderer with a one-line description and "
+                                "its parameters;\nwith --checks, every function check a manifest may name, its stage "
+                                "and what it runs.\n\n",
+                                specs))
+        return *status;
     if (args.has("checks")) {
         for (const FunctionCheckInfo& c : functionChecks())
             std::printf("%-28s %-16s %s\n", c.name.c_str(), c.stage.c_str(), c.description.c_str());

@@ -38,12 +38,11 @@ std::string stem(const std::string& path) {
 int renderCommand(int argc, char** argv) {
     const auto specs = renderOptions();
     const Args args(specs, argc, argv, 2, "render");
-    if (args.has("help")) {
-        std::cout << "usage: voxlab render [SCENE.json] [options]\n\n"
-                     "Renders one image headless and writes it as PNG. Flags override the scene file.\n\n"
-                  << formatOptions(specs);
-        return 0;
-    }
+    if (auto status = usageExit(args, false,
+                                "usage: voxlab render [SCENE.json] [options]\n\n"
+                                "Renders one image headless and writes it as PNG. Flags override the scene file.\n\n",
+                                specs))
+        return *status;
     const Scene scene = sceneFromArgs(args, "render");
     if (args.has("print-scene")) {
         std::cout << scene.toJson().dump(2) << "\n";

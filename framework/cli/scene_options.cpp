@@ -67,6 +67,11 @@ void applyVolumeCapOption(const Args& args) {
     ::setenv(kVolumeCapVariable, std::to_string(mib).c_str(), 1);
 }
 
+Volume loadDatasetArgument(const Args& args) {
+    applyVolumeCapOption(args);
+    return loadVolume(resolveDataPath(args.positionals().at(0)));
+}
+
 std::string defaultScenePath() { return projectRoot() + "/datasets/scenes/default.json"; }
 
 namespace {

@@ -27,16 +27,15 @@ int viewCommand(int argc, char** argv) {
     specs.push_back({"help", "", "show this help"});
     const int first = (argc > 1 && std::string(argv[1]) == "view") ? 2 : 1;
     const Args args(specs, argc, argv, first, "view");
-    if (args.has("help")) {
-        std::cout << "usage: voxlab view [DATASET|SCENE.json] [options]\n\n"
-                     "Opens the interactive viewer. With no argument it shows the default scene.\n"
-                     "In the window, H lists the keys. --script FILE drives it without a person (see\n"
-                     "framework/include/voxlab/viewer_script.h) and exits at the end of the script, or\n"
-                     "hands the window over with --keep-open. --deck FILE steps through a lecture's\n"
-                     "scenes with the arrow keys (the format: framework/include/voxlab/deck.h).\n\n"
-                  << formatOptions(specs);
-        return 0;
-    }
+    if (auto status = usageExit(args, false,
+                                "usage: voxlab view [DATASET|SCENE.json] [options]\n\n"
+                                "Opens the interactive viewer. With no argument it shows the default scene.\n"
+                                "In the window, H lists the keys. --script FILE drives it without a person (see\n"
+                                "framework/include/voxlab/viewer_script.h) and exits at the end of the script, or\n"
+                                "hands the window over with --keep-open. --deck FILE steps through a lecture's\n"
+                                "scenes with the arrow keys (the format: framework/include/voxlab/deck.h).\n\n",
+                                specs))
+        return *status;
 #ifdef VOXLAB_HAVE_VIEWER
     // With no argument the viewer opens the default scene; a dataset given
     // as the argument replaces the default scene's dataset (and its

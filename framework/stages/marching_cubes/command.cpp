@@ -18,17 +18,15 @@ int meshCommand(int argc, char** argv) {
         volumeCapOption(),
         {"help", "", "show this help"}};
     const Args args(specs, argc, argv, 2, "mesh");
-    if (args.has("help") || args.positionals().size() != 1) {
-        std::cout << "usage: voxlab mesh DATASET [--isovalue V] [--out FILE.ply|FILE.obj]\n\n"
-                     "Extracts the isosurface at V by marching cubes (the stage's C++ functions) and prints its\n"
-                     "vertices, triangles, area, enclosed volume and whether it is closed; with --out, writes it\n"
-                     "for MeshLab, ParaView or Blender. Coordinates are world units (voxel centre (i,j,k) at\n"
-                     "(i+1/2, j+1/2, k+1/2) * spacing); triangles face the lower values.\n\n"
-                  << formatOptions(specs);
-        return args.has("help") ? 0 : 2;
-    }
-    applyVolumeCapOption(args);
-    const Volume volume = loadVolume(resolveDataPath(args.positionals()[0]));
+    if (auto status = usageExit(args, args.positionals().size() != 1,
+                                "usage: voxlab mesh DATASET [--isovalue V] [--out FILE.ply|FILE.obj]\n\n"
+                                "Extracts the isosurface at V by marching cubes (the stage's C++ functions) and prints its\n"
+                                "vertices, triangles, area, enclosed volume and whether it is closed; with --out, writes it\n"
+                                "for MeshLab, ParaView or Blender. Coordinates are world units (voxel centre (i,j,k) at\n"
+                                "(i+1/2, j+1/2, k+1/2) * spacing); triangles face the lower values.\n\n",
+                                specs))
+        return *status;
+    const Volume volume = loadDatasetArgument(args);
     const double isovalue = args.get("isovalue") ? parseNumber(*args.get("isovalue"), "--isovalue")
                                                  : 0.5 * (volume.minValue() + volume.maxValue());
     const auto start = std::chrono::steady_clock::now();

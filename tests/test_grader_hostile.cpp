@@ -421,6 +421,20 @@ TEST_F(HostileSubmissions, TheStageHostHoldsNoStageCode) {
     }
 }
 
+// The host's answers are bounded: a C++ stage returning more values than
+// the protocol carries is an error naming the function, not a flood into
+// the grader (stage_host_protocol.h's kMaxPoints).
+TEST_F(HostileSubmissions, AStagesOversizedResultIsAnErrorNamingIt) {
+    fs::path sub = submissionWith("flood", "texslice3d", "assignments");
+    std::ofstream(sub / "texslice3d/proxy_geometry.cpp")
+        << "#include \"voxlab/proxy_geometry.h\"\nnamespace voxlab {\n"
+           "std::vector<glm::dvec3> planeBoxPolygon(glm::dvec3, double, glm::dvec3 lo, glm::dvec3) {\n"
+           "    return std::vector<glm::dvec3>(100000, lo);\n}\n}  // namespace voxlab\n";
+    const json s = gradeAndCheck(sub, "texslice3d");
+    EXPECT_EQ(s["score"].get<double>(), 0.0);
+    EXPECT_NE(report_.find("planeBoxPolygon returned 100000 values (at most 64)"), std::string::npos) << s["message"];
+}
+
 // A build may not use unbounded memory or disk: an assembler told to
 // embed 1.5 GB (the largest system library the compiler may read, over
 // and over; a device such as /dev/zero it refuses to embed).

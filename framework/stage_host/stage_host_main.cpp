@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "landlock.h"
@@ -45,47 +46,20 @@ void answering(Serve serve) {
     }
 }
 
-void serveCall(char op, const CppStages& stages) {
-    double a[22];
-    if (!readAll(0, a, std::size_t(argumentCount(op)) * sizeof(double))) _exit(0);
+// Serves one call of `f` (the library's, or null where it defines none):
+// reads its arguments, calls it and answers with its result (the
+// protocol: stage_host_protocol.h).
+template <class R, class... A>
+void serveCall(R (*f)(A...), const char* name) {
+    std::tuple<Arg<A>...> args;
+    const bool read = std::apply([](auto&... arg) { return (arg.read(0) && ...); }, args);
+    if (!read) _exit(0);
     answering([&] {
-        if (op == 'P') {
-            if (!stages.planeBoxPolygon) throw NotImplemented("planeBoxPolygon");
-            std::vector<glm::dvec3> points = stages.planeBoxPolygon({a[0], a[1], a[2]}, a[3], {a[4], a[5], a[6]},
-                                                                   {a[7], a[8], a[9]});
-            if (points.size() > kMaxPoints) throw Error("planeBoxPolygon returned " + std::to_string(points.size()) + " points");
-            const std::uint32_t count = std::uint32_t(points.size());
-            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, &count, 4) ||
-                !sendAll(kAnswers, points.data(), count * sizeof(glm::dvec3)))
-                _exit(3);
-        } else if (op == 'A') {
-            if (!stages.chooseSliceAxis) throw NotImplemented("chooseSliceAxis");
-            const std::int32_t axis = stages.chooseSliceAxis({a[0], a[1], a[2]});
-            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, &axis, 4)) _exit(3);
-        } else if (op == 'C') {
-            if (!stages.cubeCase) throw NotImplemented("cubeCase");
-            const std::int32_t bits = stages.cubeCase(a, a[8]);
-            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, &bits, 4)) _exit(3);
-        } else if (op == 'W') {
-            if (!stages.factorShearWarp) throw NotImplemented("factorShearWarp");
-            const ShearWarp sw = stages.factorShearWarp(unpackCamera(a), glm::ivec3(int(a[16]), int(a[17]), int(a[18])),
-                                                        {a[19], a[20], a[21]});
-            double out[17] = {double(sw.axis), double(sw.front), sw.shear.x, sw.shear.y, sw.offset.x, sw.offset.y,
-                              double(sw.size.x), double(sw.size.y)};
-            for (int col = 0; col < 3; ++col)
-                for (int row = 0; row < 3; ++row) out[8 + 3 * col + row] = sw.warp[col][row];
-            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, out, sizeof out)) _exit(3);
-        } else if (op == 'S') {
-            if (!stages.splatOrder) throw NotImplemented("splatOrder");
-            const SplatOrder order = stages.splatOrder({a[0], a[1], a[2]});
-            std::int32_t out[6];
-            for (int k = 0; k < 3; ++k) out[k] = order.axes[std::size_t(k)], out[3 + k] = order.step[std::size_t(k)];
-            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, out, sizeof out)) _exit(3);
-        } else {
-            if (!stages.edgeCrossing) throw NotImplemented("edgeCrossing");
-            const glm::dvec3 p = stages.edgeCrossing({a[0], a[1], a[2]}, {a[3], a[4], a[5]}, a[6], a[7], a[8]);
-            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, &p, sizeof p)) _exit(3);
-        }
+        if (!f) throw NotImplemented(name);
+        const R result = std::apply([&](const auto&... arg) { return f(arg.get()...); }, args);
+        if (const std::string why = Answer<R>::tooLarge(result); !why.empty())
+            throw Error(std::string(name) + " returned " + why);
+        if (!Answer<R>::write(kAnswers, result)) _exit(3);
     });
 }
 
@@ -137,12 +111,15 @@ int serve(const std::string& library) {
     const CppStages stages = get();
     signal(SIGPIPE, SIG_DFL);
     for (char op; readAll(0, &op, 1);) {
-        if (op == 'c' || op == 'x') {
-            serveBatch(op, stages);
-            continue;
+        switch (static_cast<unsigned char>(op)) {
+            case 'c':
+            case 'x': serveBatch(op, stages); break;
+#define VOXLAB_STAGE_SERVE(name, Result, Parameters) \
+    case kOp_##name: serveCall(stages.name, #name); break;
+            VOXLAB_CPP_STAGE_FUNCTIONS(VOXLAB_STAGE_SERVE)
+#undef VOXLAB_STAGE_SERVE
+            default: return 2;
         }
-        if (op != 'P' && op != 'A' && op != 'C' && op != 'X' && op != 'S' && op != 'W') return 2;
-        serveCall(op, stages);
     }
     return 0;
 }

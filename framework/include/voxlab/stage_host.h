@@ -12,20 +12,16 @@
 // write to the results channel, read what the worker holds, or change how
 // the framework renders: it can only answer the calls it is asked.
 //
-// Protocol (native byte order; both ends are built from this tree):
-//   request   one byte, the function ('P' planeBoxPolygon, 'A' chooseSliceAxis,
-//             'C' cubeCase, 'X' edgeCrossing, 'S' splatOrder, 'W'
-//             factorShearWarp), then its arguments as doubles (10 for 'P', 3
-//             for 'A' and 'S', 9 for 'C': the 8 values and the isovalue, 9 for
-//             'X': a, b, va, vb, isovalue, 22 for 'W': the camera's position,
-//             forward, right, down, pixel scale, width, height, projection
-//             (0 orthographic), then dims and spacing);
-//   response  'O' then the result ('P': uint32 count <= 64, then 3 doubles a
-//             point; 'A' and 'C': int32; 'X': 3 doubles; 'S': 6 int32, the
-//             axes then the steps; 'W': 17 doubles, axis, front, shear,
-//             offset, size and the warp's 9, column by column), or 'N'/'E' then
-//             uint32 length and the message of a NotImplemented / other
-//             exception.
+// Protocol (native byte order; both ends are built from this tree), made
+// for every function from VOXLAB_CPP_STAGE_FUNCTIONS (stage_host_protocol.h),
+// so that a new C++ stage function needs nothing here:
+//   request   one byte, the function's index in that list, then its
+//             arguments: each as the bytes of its value (numbers, glm
+//             vectors, a Camera), a pointer as the 8 values it points to
+//             (cubeCase's corners);
+//   response  'O' then the result (the bytes of its value; a vector as a
+//             uint32 count <= 64 and its elements), or 'N'/'E' then uint32
+//             length and the message of a NotImplemented / other exception.
 //   batches  'c' (cubeCase) and 'x' (edgeCrossing): uint32 count <= 16384,
 //             then 8 doubles a call (the 8 values; a, b, va, vb) and one
 //             isovalue; 'O' then count int32 / count points of 3 doubles, or

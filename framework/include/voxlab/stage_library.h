@@ -29,9 +29,9 @@ namespace voxlab {
 // types). From it come the table's members, the linked-in table, the stubs
 // that throw NotImplemented (stage_library.cpp), and the weak declarations
 // and exports every stage library carries
-// (framework/stage_library/stage_exports.cpp). Adding a function: a line in
-// its contract header, and its call across the stage host's pipe
-// (stage_host.cpp, stage_host_main.cpp).
+// (framework/stage_library/stage_exports.cpp), and the calls across the
+// stage host's pipe (stage_host_protocol.h). Adding a function: a line in its
+// contract header.
 
 // One pointer per C++ stage function.
 struct CppStages {

@@ -68,13 +68,6 @@ void awaitAnswer() {
     throw Error(message);
 }
 
-// Sends a call; returns when the answer's status byte says it succeeded.
-void call(char op, const double* args, int count) {
-    Host& h = host();
-    if (!sendAll(h.to, &op, 1) || !sendAll(h.to, args, std::size_t(count) * sizeof(double))) hostFailed();
-    awaitAnswer();
-}
-
 // Sends a batch of `count` calls of 8 doubles each (kMaxBatch at a time).
 template <class Answer>
 void callBatch(char op, const double* args, std::size_t count, double isovalue, Answer* answers) {
@@ -104,65 +97,23 @@ void remoteEdgeCrossings(const EdgeCrossingCall* calls, std::size_t count, doubl
     callBatch('x', args.data(), count, isovalue, points);
 }
 
-std::vector<glm::dvec3> remotePlaneBoxPolygon(glm::dvec3 n, double d, glm::dvec3 lo, glm::dvec3 hi) {
-    const double args[10] = {n.x, n.y, n.z, d, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z};
-    call('P', args, 10);
-    std::uint32_t count = 0;
-    if (!readAll(host().from, &count, 4) || count > kMaxPoints) hostFailed();
-    std::vector<glm::dvec3> points(count);
-    if (!readAll(host().from, points.data(), count * sizeof(glm::dvec3))) hostFailed();
-    return points;
-}
-
-int remoteChooseSliceAxis(glm::dvec3 v) {
-    const double args[3] = {v.x, v.y, v.z};
-    call('A', args, 3);
-    std::int32_t axis = 0;
-    if (!readAll(host().from, &axis, 4)) hostFailed();
-    return axis;
-}
-
-int remoteCubeCase(const double values[8], double isovalue) {
-    double args[9];
-    std::copy(values, values + 8, args);
-    args[8] = isovalue;
-    call('C', args, 9);
-    std::int32_t bits = 0;
-    if (!readAll(host().from, &bits, 4)) hostFailed();
-    return bits;
-}
-
-ShearWarp remoteFactorShearWarp(const Camera& camera, glm::ivec3 dims, glm::dvec3 spacing) {
-    double args[22];
-    packShearWarpCall(camera, dims, spacing, args);
-    call('W', args, 22);
-    double out[17];
-    if (!readAll(host().from, out, sizeof out)) hostFailed();
-    ShearWarp sw;
-    sw.axis = int(out[0]), sw.front = int(out[1]);
-    sw.shear = {out[2], out[3]}, sw.offset = {out[4], out[5]}, sw.size = {int(out[6]), int(out[7])};
-    for (int col = 0; col < 3; ++col)
-        for (int row = 0; row < 3; ++row) sw.warp[col][row] = out[8 + 3 * col + row];
-    return sw;
-}
-
-SplatOrder remoteSplatOrder(glm::dvec3 d) {
-    const double args[3] = {d.x, d.y, d.z};
-    call('S', args, 3);
-    std::int32_t out[6];
-    if (!readAll(host().from, out, sizeof out)) hostFailed();
-    SplatOrder order;
-    for (int k = 0; k < 3; ++k) order.axes[std::size_t(k)] = out[k], order.step[std::size_t(k)] = out[3 + k];
-    return order;
-}
-
-glm::dvec3 remoteEdgeCrossing(glm::dvec3 a, glm::dvec3 b, double va, double vb, double isovalue) {
-    const double args[9] = {a.x, a.y, a.z, b.x, b.y, b.z, va, vb, isovalue};
-    call('X', args, 9);
-    glm::dvec3 p;
-    if (!readAll(host().from, &p, sizeof p)) hostFailed();
-    return p;
-}
+// The remote stand-in of the stage function with op `Op` and type R(A...):
+// sends the call, waits for the answer and reads the result.
+template <unsigned char Op, class F>
+struct Remote;
+template <unsigned char Op, class R, class... A>
+struct Remote<Op, R(A...)> {
+    static R call(A... a) {
+        std::string message(1, char(Op));
+        (Arg<A>::put(message, a), ...);
+        Host& h = host();
+        if (!sendAll(h.to, message.data(), message.size())) hostFailed();
+        awaitAnswer();
+        R result{};
+        if (!Answer<R>::read(h.from, &result)) hostFailed();
+        return result;
+    }
+};
 
 }  // namespace
 
@@ -196,13 +147,12 @@ void useStageHost(const std::string& program, const std::string& library, const 
     h = {toHost[1], fromHost[0], pid, library.substr(library.rfind('/') + 1), ""};
     CppStages routed{};
     for (const std::string& f : functions) {
-        if (f == "planeBoxPolygon") routed.planeBoxPolygon = &remotePlaneBoxPolygon;
-        else if (f == "chooseSliceAxis") routed.chooseSliceAxis = &remoteChooseSliceAxis;
-        else if (f == "cubeCase") routed.cubeCase = &remoteCubeCase;
-        else if (f == "edgeCrossing") routed.edgeCrossing = &remoteEdgeCrossing;
-        else if (f == "splatOrder") routed.splatOrder = &remoteSplatOrder;
-        else if (f == "factorShearWarp") routed.factorShearWarp = &remoteFactorShearWarp;
-        else throw Error("'" + f + "' is not a C++ stage function");
+        bool known = false;
+#define VOXLAB_STAGE_ROUTE(name, Result, Parameters) \
+    if (f == #name) routed.name = &Remote<kOp_##name, Result Parameters>::call, known = true;
+        VOXLAB_CPP_STAGE_FUNCTIONS(VOXLAB_STAGE_ROUTE)
+#undef VOXLAB_STAGE_ROUTE
+        if (!known) throw Error("'" + f + "' is not a C++ stage function");
     }
     overrideStageFunctions(routed);
     StageBatches batches{};

@@ -5,16 +5,19 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <string_view>
+#include <type_traits>
+#include <vector>
 
 #include <glm/glm.hpp>
 
-#include "voxlab/camera.h"
 #include "voxlab/fd_io.h"
+#include "voxlab/stage_library.h"
 
 namespace voxlab::stage_host {
 
-constexpr std::uint32_t kMaxPoints = 64;      // a plane meets a box in at most 6
+constexpr std::uint32_t kMaxPoints = 64;      // values of a vector result (a plane meets a box in at most 6)
 constexpr std::uint32_t kMaxMessage = 4096;
 constexpr std::uint32_t kMaxBatch = 1u << 14;  // calls in one batch ('c', 'x')
 // The host reads calls on stdin and answers on fd 3, so that what the
@@ -26,26 +29,72 @@ inline bool sendAll(int fd, const void* data, std::size_t size) {
     return writeAll(fd, std::string_view(static_cast<const char*>(data), size)) == 0;
 }
 
-// The doubles a call of `op` carries.
-inline int argumentCount(char op) { return op == 'P' ? 10 : op == 'A' || op == 'S' ? 3 : op == 'W' ? 22 : 9; }
+// A call is its function's op (its index in VOXLAB_CPP_STAGE_FUNCTIONS)
+// and its arguments; the answer is a status byte ('O', or 'N' / 'E' and a
+// message) and, after 'O', the result. Both ends are built together by the
+// same compiler, so values cross as their bytes:
+//  - an argument or a result that is trivially copyable (a number, a glm
+//    vector, a Camera, a ShearWarp, ...) as the bytes of its value;
+//  - a pointer argument as the kPointedValues values it points to (the
+//    contracts' only one is cubeCase's corners);
+//  - a vector result as a uint32 count, at most kMaxPoints, and its elements.
+// The worker reads the host's answers as untrusted: a count past the limit
+// ends the host.
+enum Op : unsigned char {
+#define VOXLAB_STAGE_OP(name, Result, Parameters) kOp_##name,
+    VOXLAB_CPP_STAGE_FUNCTIONS(VOXLAB_STAGE_OP)
+#undef VOXLAB_STAGE_OP
+    kOpCount
+};
+// The batches' ops ('c' cube cases, 'x' edge crossings) are letters past them.
+static_assert(kOpCount < 'c', "too many C++ stage functions for the op byte");
+constexpr std::size_t kPointedValues = 8;
 
-// A camera and a grid as the 22 doubles of a 'W' call, and back.
-inline void packShearWarpCall(const Camera& cam, glm::ivec3 dims, glm::dvec3 spacing, double* a) {
-    const glm::dvec3 vectors[4] = {cam.position, cam.forward, cam.right, cam.down};
-    for (int v = 0; v < 4; ++v)
-        for (int k = 0; k < 3; ++k) a[3 * v + k] = vectors[v][k];
-    a[12] = cam.pixelScale, a[13] = cam.width, a[14] = cam.height;
-    a[15] = cam.projection == Projection::Orthographic ? 0.0 : 1.0;
-    for (int k = 0; k < 3; ++k) a[16 + k] = dims[k], a[19 + k] = spacing[k];
-}
+template <class T>
+struct Arg {  // by value or by const reference
+    using Value = std::decay_t<T>;
+    static_assert(std::is_trivially_copyable_v<Value>, "a stage function's argument must be trivially copyable");
+    Value value{};
+    static void put(std::string& out, const Value& v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); }
+    bool read(int fd) { return readAll(fd, &value, sizeof value); }
+    const Value& get() const { return value; }
+};
 
-inline Camera unpackCamera(const double* a) {
-    Camera cam;
-    cam.position = {a[0], a[1], a[2]}, cam.forward = {a[3], a[4], a[5]};
-    cam.right = {a[6], a[7], a[8]}, cam.down = {a[9], a[10], a[11]};
-    cam.pixelScale = a[12], cam.width = int(a[13]), cam.height = int(a[14]);
-    cam.projection = a[15] == 0.0 ? Projection::Orthographic : Projection::Perspective;
-    return cam;
-}
+template <class T>
+struct Arg<const T*> {
+    static_assert(std::is_trivially_copyable_v<T>);
+    T values[kPointedValues]{};
+    static void put(std::string& out, const T* p) { out.append(reinterpret_cast<const char*>(p), sizeof values); }
+    bool read(int fd) { return readAll(fd, values, sizeof values); }
+    const T* get() const { return values; }
+};
+
+template <class R>
+struct Answer {
+    static_assert(std::is_trivially_copyable_v<R>, "a stage function's result must be trivially copyable or a vector");
+    static bool write(int fd, const R& r) { return sendAll(fd, "O", 1) && sendAll(fd, &r, sizeof r); }
+    static bool read(int fd, R* r) { return readAll(fd, r, sizeof *r); }
+    static std::string tooLarge(const R&) { return ""; }
+};
+
+template <class T>
+struct Answer<std::vector<T>> {
+    static_assert(std::is_trivially_copyable_v<T>);
+    // Why the host refuses to send `r` (too many values), or "".
+    static std::string tooLarge(const std::vector<T>& r) {
+        return r.size() > kMaxPoints ? std::to_string(r.size()) + " values (at most " + std::to_string(kMaxPoints) + ")"
+                                     : "";
+    }
+    static bool write(int fd, const std::vector<T>& r) {
+        const std::uint32_t count = std::uint32_t(r.size());
+        return sendAll(fd, "O", 1) && sendAll(fd, &count, 4) && sendAll(fd, r.data(), count * sizeof(T));
+    }
+    static bool read(int fd, std::vector<T>* r) {
+        std::uint32_t count = 0;
+        if (!readAll(fd, &count, 4) || count > kMaxPoints) return false;
+        r->resize(count);
+        return readAll(fd, r->data(), count * sizeof(T));
+    }
+};
 
 }  // namespace voxlab::stage_host

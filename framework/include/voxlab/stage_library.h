@@ -88,13 +88,13 @@ std::string stageExportsObject();
 std::string stagePreludeHeader();
 
 // Where a stage library's headers are: framework/include, then each stage's
-// contract folder (framework/stages/STAGE/include), in name order.
+// contract folder (framework/stages/STAGE/include), in name order; and,
+// when the prebuilt exports are gone (their source is then compiled), the
+// folder of the generated voxlab/stage_contracts.h where framework/include
+// lacks it (an installed tree has it there): the build's, while it is still
+// there. The stage library's build reads these and nothing else of the
+// framework's headers.
 std::vector<std::string> stageIncludeDirs();
-
-// The folder of the generated voxlab/stage_contracts.h when it is not in
-// framework/include (an installed tree has it there): the build's, while
-// it is still there, or "".
-std::string stageContractsDir();
 
 // The command that builds a stage library from `sources` (paths relative to
 // `workingDir`, where it is run) into `output`: the compiler this framework

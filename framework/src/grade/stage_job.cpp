@@ -204,7 +204,6 @@ bool buildLibrary(const std::vector<std::string>& sources, const std::string& ro
                   const ChildCgroup& cgroup, RunOutcome& outcome) {
     std::vector<std::string> readable = {root, projectRoot() + "/framework/stage_library"};
     for (const std::string& dir : stageIncludeDirs()) readable.push_back(dir);
-    if (const std::string generated = stageContractsDir(); !generated.empty()) readable.push_back(generated);
     if (const std::string exports = stageExportsObject(); !exports.empty()) readable.push_back(exports);
     const std::string prelude = stagePreludeHeader();
     if (!prelude.empty()) readable.insert(readable.end(), {prelude, prelude + ".gch"});

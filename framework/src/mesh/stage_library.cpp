@@ -143,6 +143,18 @@ std::string stagePreludeHeader() {
     return !header.empty() && regularFileExists(header + ".gch") ? header : "";
 }
 
+namespace {
+
+// The folder of the generated voxlab/stage_contracts.h when framework/include
+// lacks it, or "".
+std::string stageContractsDir() {
+    if (regularFileExists(projectRoot() + "/framework/include/voxlab/stage_contracts.h")) return "";  // installed
+    const char* built = VOXLAB_STAGE_CONTRACTS_DIR;
+    return built && regularFileExists(std::string(built) + "/voxlab/stage_contracts.h") ? built : "";
+}
+
+}  // namespace
+
 std::vector<std::string> stageIncludeDirs() {
     std::vector<std::string> contracts;
     std::error_code ec;
@@ -152,13 +164,9 @@ std::vector<std::string> stageIncludeDirs() {
     }
     std::sort(contracts.begin(), contracts.end());
     contracts.insert(contracts.begin(), projectRoot() + "/framework/include");
+    if (const std::string generated = stageContractsDir(); stageExportsObject().empty() && !generated.empty())
+        contracts.push_back(generated);
     return contracts;
-}
-
-std::string stageContractsDir() {
-    if (regularFileExists(projectRoot() + "/framework/include/voxlab/stage_contracts.h")) return "";  // installed
-    const char* built = VOXLAB_STAGE_CONTRACTS_DIR;
-    return built && regularFileExists(std::string(built) + "/voxlab/stage_contracts.h") ? built : "";
 }
 
 // The flags are also framework/CMakeLists.txt's for the exports object and
@@ -169,10 +177,6 @@ std::vector<std::string> stageLibraryBuildCommand(const std::vector<std::string>
                                     "-Wl,-Bsymbolic", "-DGLM_FORCE_CXX17"};
     for (const std::string& dir : stageIncludeDirs()) cmd.push_back("-I" + dir);
     const std::string exports = stageExportsObject();
-    // Without the prebuilt exports, their source is compiled, which reads the
-    // list generated from the contracts (voxlab/stage_contracts.h).
-    if (const std::string generated = stageContractsDir(); exports.empty() && !generated.empty())
-        cmd.push_back("-I" + generated);
     if (!prelude.empty()) cmd.insert(cmd.end(), {"-include", prelude});
     cmd.insert(cmd.end(), sources.begin(), sources.end());
     cmd.push_back(exports.empty() ? projectRoot() + "/framework/stage_library/stage_exports.cpp" : exports);

@@ -61,8 +61,7 @@ const LabelClass* LabelMap::find(int label) const {
 namespace {
 
 // The cutting plane's section of a scene, spelled here only.
-constexpr const char* kCutKey = "cutting_plane";
-const std::string kCut = kCutKey;
+const std::string kCut = "cutting_plane";
 
 using json = nlohmann::json;
 
@@ -364,7 +363,7 @@ std::vector<ClipPlane> Parser::clipPlanes(const json& j) const {
 Scene Parser::parse(const json& j) const {
     if (!j.is_object()) throw Error((where_.empty() ? "" : where_ + ": ") + "expected a JSON object");
     onlyKeys(j, "", {"dataset", "renderer", "camera", "projection", "size", "sampling", "window",
-                     "background", "parameters", "transfer_function", kTransferFunction2DName, "roi", kCutKey, "labels",
+                     "background", "parameters", "transfer_function", kTransferFunction2DName, "roi", kCut.c_str(), "labels",
                      "fusion", "clip_planes", "gpu_memory"});
     Scene s;
 

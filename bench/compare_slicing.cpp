@@ -43,6 +43,7 @@
 #include "voxlab/image.h"
 #include "voxlab/render_engine.h"
 #include "voxlab/scene.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/transfer_function.h"
 #include "voxlab/volume.h"
 
@@ -194,7 +195,7 @@ std::string fileName(const std::string& dataset, double azimuth, const std::stri
 
 int run(const Options& o) {
     const std::unique_ptr<GlContext> context = createHeadlessContext();
-    RenderEngine engine;
+    RenderEngine engine(rendererRegistry());
     const char* threads = std::getenv("LP_NUM_THREADS");
     std::printf("# %s; LP_NUM_THREADS=%s; %dx%d, %s, elevation %g; median of %d frames after 1 warm-up; "
                 "composite early termination %g\n",

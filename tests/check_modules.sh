@@ -4,12 +4,16 @@
 # module includes the grader's header, one in which the volume module
 # reaches into the renderer's private headers, and one in which a C++
 # stage's contract (a stage folder's include/) includes the grader's.
-# usage: check_modules.sh PROJECT_DIR
+# With a build folder, the modules' built libraries are checked too, and a
+# planted object that calls up (the lowest module calling the engine's
+# module) is caught.
+# usage: check_modules.sh PROJECT_DIR [BUILD_DIR]
 set -euo pipefail
 project=$1
+build=${2:-}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-/usr/bin/python3 "$project/tools/check_modules.py" "$project"
+/usr/bin/python3 "$project/tools/check_modules.py" "$project" ${build:+--objects "$build"}
 
 plant() {  # plant FILE LINE EXPECTED
     rm -rf "$work/p" && mkdir -p "$work/p" && cp -r "$project/framework" "$work/p/"
@@ -23,3 +27,21 @@ plant() {  # plant FILE LINE EXPECTED
 plant framework/src/gl/shader.cpp '#include "voxlab/grading.h"' "framework/src/gl/shader.cpp"
 plant framework/include/voxlab/volume.h '#include "../render/engine_internal.h"' "module volume includes ../render/engine_internal.h"
 plant framework/stages/splat/include/voxlab/splatting.h '#include "voxlab/grading.h"' "module contracts includes grading.h"
+
+if [ -n "$build" ]; then
+    # The io module's library, with one more member that calls the render
+    # module's defaultImplementationRoot(): its header is never included, as
+    # a hand-written declaration would do it.
+    mkdir -p "$work/b/framework"
+    cp "$build"/framework/libvoxlab_*.a "$work/b/framework/"
+    printf '#include <string>\nnamespace voxlab { std::string defaultImplementationRoot(); }\n%s\n' \
+        'std::string plantedCaller() { return voxlab::defaultImplementationRoot(); }' > "$work/planted.cpp"
+    c++ -c "$work/planted.cpp" -o "$work/planted.o"
+    ar r "$work/b/framework/libvoxlab_io.a" "$work/planted.o" 2>/dev/null
+    if out=$(/usr/bin/python3 "$project/tools/check_modules.py" "$project" --objects "$work/b"); then
+        echo "FAIL: a planted upward call passed the object check"; exit 1
+    fi
+    expected="libvoxlab_io.a(planted.o): module io uses voxlab::defaultImplementationRoot[abi:cxx11]() (module render"
+    grep -qF "$expected" <<< "$out" || { echo "FAIL: the planted call is not named: $out"; exit 1; }
+    echo "ok    planted in libvoxlab_io.a, caught: $(grep -F "$expected" <<< "$out" | head -1)"
+fi

@@ -6,6 +6,7 @@
 
 #include "support/gl_fixture.h"
 #include "voxlab/error.h"
+#include "voxlab/stage_registry.h"
 
 namespace voxlab::testing {
 namespace {
@@ -25,7 +26,7 @@ double magentaFraction(const Image& img) {
 
 TEST(Assignments, EveryRayCasterShowsTheNotImplementedPattern) {
     auto context = createHeadlessContext();
-    RenderEngine engine(kAssignments);
+    RenderEngine engine(rendererRegistry(), kAssignments);
     const Volume v = makePhantom("phantom:sphere:32");
     engine.setVolume(v);
     for (const auto& r : rendererRegistry().all()) {
@@ -53,7 +54,7 @@ TEST(Assignments, EveryRayCasterShowsTheNotImplementedPattern) {
 
 TEST(Assignments, TheWorkedExampleRunsAsGiven) {
     auto context = createHeadlessContext();
-    RenderEngine student(kAssignments), reference;
+    RenderEngine student(rendererRegistry(), kAssignments), reference(rendererRegistry());
     const Volume v = makePhantom("phantom:shells:32");
     Scene scene;
     scene.renderer = "slicer";
@@ -69,7 +70,7 @@ TEST(Assignments, TheWorkedExampleRunsAsGiven) {
 
 TEST(Assignments, TheReferenceNeverShowsThePattern) {
     auto context = createHeadlessContext();
-    RenderEngine engine;
+    RenderEngine engine(rendererRegistry());
     const Volume v = makePhantom("phantom:sphere:32");
     engine.setVolume(v);
     for (const auto& r : rendererRegistry().all()) {

@@ -13,6 +13,7 @@
 #include "voxlab/error.h"
 #include "voxlab/image.h"
 #include "voxlab/renderer.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/volume.h"
 
 namespace voxlab::testing {

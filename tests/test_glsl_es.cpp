@@ -26,6 +26,7 @@
 #include "voxlab/renderer.h"
 #include "voxlab/scene.h"
 #include "voxlab/shader.h"
+#include "voxlab/stage_registry.h"
 
 namespace voxlab {
 namespace {

@@ -23,6 +23,7 @@
 #include "voxlab/image.h"
 #include "voxlab/render_engine.h"
 #include "voxlab/scene.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/volume.h"
 
 namespace voxlab::testing {
@@ -323,7 +324,7 @@ TEST(GradingCalibration, TheReferenceRenderedAnotherWayPasses) {
     renderExpectedOutputs(o);
 
     auto context = createHeadlessContext();
-    RenderEngine engine;
+    RenderEngine engine(rendererRegistry());
     std::map<std::string, Volume> volumes;
     double worst = 0.0;
     std::string worstScene;

@@ -13,6 +13,7 @@
 #include "support/run_command.h"
 #include "voxlab/error.h"
 #include "voxlab/shader.h"
+#include "voxlab/stage_registry.h"
 
 namespace voxlab::testing {
 namespace {
@@ -28,7 +29,7 @@ TEST(LiveReload, TheWatchedFilesAreFoundFromAnyWorkingFolder) {
     auto context = createHeadlessContext();
     const fs::path before = fs::current_path();
     fs::current_path("/");
-    RenderEngine engine(std::string(VOXLAB_SOURCE_DIR) + "/assignments");
+    RenderEngine engine(rendererRegistry(), std::string(VOXLAB_SOURCE_DIR) + "/assignments");
     const Volume volume = makePhantom("phantom:sphere:16");
     engine.setVolume(volume);
     Scene scene;
@@ -55,7 +56,7 @@ TEST(LiveReload, ABrokenEditKeepsTheLastGoodShaderAndSaysWhy) {
     const fs::path mip = root / "mip" / "mip.glsl";
     const std::string good = readFile(mip);
 
-    RenderEngine engine(root.string());
+    RenderEngine engine(rendererRegistry(), root.string());
     const Volume volume = makePhantom("phantom:sphere:16");
     engine.setVolume(volume);
     Scene scene;
@@ -87,7 +88,7 @@ TEST(LiveReload, ABrokenEditKeepsTheLastGoodShaderAndSaysWhy) {
     EXPECT_NEAR(after.at(12, 12).r, 0.5f, 0.01f);
 
     // A program that never compiled has nothing to fall back on: it throws.
-    RenderEngine fresh(root.string());
+    RenderEngine fresh(rendererRegistry(), root.string());
     fresh.setVolume(volume);
     std::ofstream(mip) << "this is not GLSL\n";
     EXPECT_THROW(fresh.render(scene), ShaderError);

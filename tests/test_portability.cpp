@@ -29,6 +29,7 @@
 #include "voxlab/image.h"
 #include "voxlab/render_engine.h"
 #include "voxlab/scene.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/volume.h"
 
 namespace voxlab::testing {
@@ -122,10 +123,10 @@ TEST(Portability, ShearWarpAfterASceneOfAnotherSizeIsAsInAFreshEngine) {
     const Scene first = Scene::load((kSource / "reference/shearwarp/scenes/tooth_from_below.json").string());
     const Scene second = Scene::load((kSource / "reference/shearwarp/scenes/headsq_hu_anisotropic.json").string());
     const Volume a = loadVolume(resolveDataPath(first.dataset)), b = loadVolume(resolveDataPath(second.dataset));
-    RenderEngine fresh("");
+    RenderEngine fresh(rendererRegistry(), "");
     fresh.setVolume(b);
     const Image want = fresh.render(second);
-    RenderEngine engine("");
+    RenderEngine engine(rendererRegistry(), "");
     engine.setVolume(a);
     engine.render(first);
     engine.setVolume(b);

@@ -27,6 +27,7 @@
 #include "voxlab/error.h"
 #include "voxlab/project_root.h"
 #include "voxlab/ray_profile.h"
+#include "voxlab/stage_registry.h"
 
 namespace voxlab::testing {
 namespace {
@@ -180,7 +181,7 @@ TEST_F(RayProfileTest, APlantedBugInMipShowsInTheProfile) {
     std::ofstream(root.path() / "mip" / "mip.glsl") << text;
 
     const Volume& volume = dataset("tooth.nrrd");
-    RenderEngine buggy(root.path().string());
+    RenderEngine buggy(rendererRegistry(), root.path().string());
     buggy.setVolume(volume);
     const RayProfile p = buggy.profileRay(columnScene(), 40, 50);
     ASSERT_EQ(p.samples.size(), 161u) << p.why;
@@ -196,7 +197,7 @@ TEST_F(RayProfileTest, APlantedBugInMipShowsInTheProfile) {
 }
 
 TEST_F(RayProfileTest, AStageNotImplementedSaysSo) {
-    RenderEngine starter(projectRoot() + "/assignments");
+    RenderEngine starter(rendererRegistry(), projectRoot() + "/assignments");
     starter.setVolume(dataset("tooth.nrrd"));
     const RayProfile p = starter.profileRay(columnScene(), 40, 50);
     EXPECT_NE(p.why.find("not implemented"), std::string::npos) << p.why;

@@ -8,6 +8,7 @@
 #include "voxlab/empty_space.h"
 #include "voxlab/error.h"
 #include "voxlab/renderers.h"
+#include "voxlab/stage_registry.h"
 
 namespace voxlab::testing {
 namespace {

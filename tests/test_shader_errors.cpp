@@ -18,6 +18,7 @@
 #include "voxlab/render_engine.h"
 #include "voxlab/phantoms.h"
 #include "voxlab/renderer.h"
+#include "voxlab/stage_registry.h"
 
 namespace voxlab::testing {
 namespace {
@@ -51,7 +52,7 @@ static_assert(!CanSetVolume<Volume>::value && !CanSetVolume<const Volume>::value
 std::string compileErrorOf(const fs::path& root, const std::string& renderer) {
     // Declared before the engine, which keeps its address: it must outlive it.
     const Volume volume = makePhantom("phantom:sphere:8");
-    RenderEngine student(root.string());
+    RenderEngine student(rendererRegistry(), root.string());
     student.setVolume(volume);
     Scene scene;
     scene.renderer = renderer;

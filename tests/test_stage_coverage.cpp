@@ -48,6 +48,7 @@
 #include "voxlab/renderer.h"
 #include "voxlab/scene.h"
 #include "voxlab/shader.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/volume.h"
 #include "support/temp_dir.h"
 
@@ -624,7 +625,7 @@ public:
           scratch_(fs::path(::testing::TempDir()) / ("voxlab_conditions_" + std::to_string(getpid()))) {
         fs::remove_all(scratch_);
         volumeCache();  // made before the lab, so destroyed after its engines
-        reference_ = std::make_unique<RenderEngine>(kReference.string());
+        reference_ = std::make_unique<RenderEngine>(rendererRegistry(), kReference.string());
     }
     ~ConditionLab() { fs::remove_all(scratch_); }
 
@@ -659,7 +660,7 @@ private:
         const std::string key = m.stage + "|" + w.key;
         if (key != current_) {
             engine_.reset();
-            engine_ = std::make_unique<RenderEngine>(root(m, w));
+            engine_ = std::make_unique<RenderEngine>(rendererRegistry(), root(m, w));
             current_ = key, currentRoot_ = engine_->implementationRoot();
         }
         return *engine_;

@@ -1,39 +1,64 @@
 #!/usr/bin/python3
-"""The framework's modules and the includes between them.
+"""The framework's modules, the includes between them and their symbols.
 
 A module is a folder of framework/src/ (the CLI, framework/cli/, is the
-module "cli"; the stage folders, framework/stages/*/, are the module
-"stages"). A header framework/include/voxlab/NAME.h belongs to the
-module whose folder holds NAME.cpp; a header with no such file is assigned
-below (HEADERS). A stage's C++ contract,
-framework/stages/STAGE/include/voxlab/NAME.h, belongs to "contracts" (the
-generated voxlab/stage_contracts.h that includes them all, to "mesh"). Each module declares the modules it may include
-(DEPENDS, lowest first); a file that includes a header of any other module
-is a violation, and this prints each as FILE: includes HEADER (MODULE), then
-fails. KNOWN lists the violations still to be removed, each with why; one
-that is gone must be taken off the list (so the list only shrinks).
+module "cli"; the stage folders, framework/stages/, are the module
+"stages"), built as the static library voxlab_MODULE. framework/modules.cmake
+declares each module and the modules it uses (DEPENDS); here, a module may
+use those and, through them, theirs.
 
-usage: check_modules.py PROJECT_DIR [--graph]
+A header framework/include/voxlab/NAME.h belongs to the module whose folder
+holds NAME.cpp; a header with no such file is assigned below (HEADERS). A
+stage's C++ contract, framework/stages/STAGE/include/voxlab/NAME.h, belongs
+to "contracts" (the generated voxlab/stage_contracts.h that includes them
+all, to "mesh"). Tests (test_*.cpp) use the whole framework and are not
+checked. A file that includes a header of a module its own does not use is
+a violation, printed as FILE: includes HEADER (MODULE). KNOWN lists the
+violations still to be removed, each with why; one that is gone must be
+taken off the list (so the list only shrinks).
+
+With --objects BUILD_DIR, the modules' built libraries
+(BUILD_DIR/framework/libvoxlab_MODULE.a) are checked as well: a symbol one
+uses that another module defines must come from a module it uses. This is
+what a lower module calling up looks like once compiled, whatever its
+includes say (a declaration written by hand, a macro).
+
+usage: check_modules.py PROJECT_DIR [--graph] [--objects BUILD_DIR]
 """
 import os
 import re
+import subprocess
 import sys
 
-DEPENDS = {
-    "io": [],                        # errors, files, numbers, the project root
-    "image": ["io"],                 # images, PNG, metrics
-    "volume": ["io"],                # volumes, loaders, phantoms, the camera
-    "gl": ["io"],                    # contexts, shaders, the stubs in a stage's text
-    "scene": ["volume", "image", "io"],              # scenes, transfer functions, labels
-    "contracts": ["scene", "volume", "io"],          # the C++ stages' contracts (stage folders' include/)
-    "mesh": ["contracts", "scene", "volume", "io"],  # the C++ stage table and stage libraries
-    "render": ["gl", "mesh", "contracts", "scene", "volume", "image", "io"],  # the engine
-    "renderers": ["render", "gl", "mesh", "contracts", "scene", "volume", "image", "io"],
-    "grade": ["renderers", "render", "gl", "mesh", "contracts", "scene", "volume", "image", "io"],
-    "stages": ["grade", "renderers", "render", "gl", "mesh", "contracts", "scene", "volume", "image", "io"],
-    "window": ["renderers", "render", "gl", "mesh", "contracts", "scene", "volume", "image", "io"],
-    "cli": ["window", "grade", "renderers", "render", "gl", "mesh", "contracts", "scene", "volume", "image", "io"],
-}
+
+def declared_modules(project):
+    """framework/modules.cmake: {module: [modules it uses, directly]}, in order."""
+    direct = {}
+    path = os.path.join(project, "framework", "modules.cmake")
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            m = re.match(r"\s*voxlab_module\(\s*([a-z_]+)((?:\s+DEPENDS(?:\s+[a-z_]+)+)?)\s*\)", line)
+            if m:
+                deps = m.group(2).split()[1:]
+                for d in deps:
+                    if d not in direct:
+                        raise SystemExit(f"{path}: module {m.group(1)} uses {d}, which is not declared above it")
+                direct[m.group(1)] = deps
+    return direct
+
+
+def closure(direct):
+    """{module: every module it uses, directly or through another}."""
+    result = {}
+    for module, deps in direct.items():  # declared lowest first
+        found = []
+        for d in deps:
+            for m in [d] + result[d]:
+                if m not in found:
+                    found.append(m)
+        result[module] = found
+    return result
+
 
 # Headers without a .cpp of the same name.
 HEADERS = {
@@ -41,6 +66,8 @@ HEADERS = {
     "image": "image",
     "renderers": "renderers",
     "window": "window",
+    "function_check_info": "checks",
+    "stage_registry": "stages",  # framework/stages/stage_registry.cpp
 }
 
 # Violations left, each with its reason; remove an entry with its violation.
@@ -55,6 +82,10 @@ def module_of_source(project, path):
     if parts[:2] == ["framework", "src"]:
         return parts[2]
     if parts[:2] == ["framework", "stages"]:
+        if parts[-1].startswith("test_"):
+            return None  # a test: the whole framework
+        if parts[-1] == "command.cpp":
+            return "cli"  # a command a stage brings is built into the program
         return "contracts" if parts[3:5] == ["include", "voxlab"] else "stages"
     return None
 
@@ -86,8 +117,56 @@ def files(project):
                     yield os.path.join(root, n)
 
 
-def main():
-    project = sys.argv[1]
+def symbols(archive):
+    """(defined, used) of a static library: {symbol: member} for the
+    symbols its members define strongly, and [(member, symbol)] for those
+    they use without defining."""
+    out = subprocess.run(["nm", "-A", "-P", "-g", archive], capture_output=True, text=True, check=True).stdout
+    defined, used = {}, []
+    for line in out.splitlines():
+        m = re.match(r"\S+\[(\S+)\]: (\S+) ([A-Za-z])", line)
+        if not m:
+            continue
+        member, name, kind = m.groups()
+        if kind == "U":
+            used.append((member, name))
+        elif kind in "TDBR":  # not weak (W, V): inline code every user has a copy of
+            defined.setdefault(name, member)
+    return defined, used
+
+
+def demangle(name):
+    out = subprocess.run(["c++filt", name], capture_output=True, text=True)
+    return out.stdout.strip() or name
+
+
+def object_problems(build, depends):
+    """What each module's library uses from a module it does not use, and
+    the module pairs that one library's symbols connect."""
+    libraries = {m: os.path.join(build, "framework", f"libvoxlab_{m}.a") for m in depends}
+    libraries = {m: path for m, path in libraries.items() if os.path.isfile(path)}
+    if not libraries:
+        return [f"{build}/framework: no libvoxlab_MODULE.a (is it a build folder, built?)"], set()
+    owner, uses = {}, {}
+    for module, path in libraries.items():
+        defined, used = symbols(path)
+        for name in defined:
+            owner.setdefault(name, module)
+        uses[module] = used
+    problems, edges = [], set()
+    for module, used in uses.items():
+        for member, name in used:
+            target = owner.get(name)
+            if target is None or target == module:
+                continue
+            edges.add((module, target))
+            if target not in depends[module]:
+                problems.append(f"libvoxlab_{module}.a({member}): module {module} uses {demangle(name)} "
+                                f"(module {target}, not among its dependencies {depends[module]})")
+    return problems, edges
+
+
+def include_problems(project, depends):
     modules = header_modules(project)
     problems, unknown, seen_known = [], [], set()
     edges = set()
@@ -101,8 +180,10 @@ def main():
                 continue
         else:
             module = module_of_source(project, path)
-        if module not in DEPENDS:
-            unknown.append(f"{rel}: module '{module}' is not declared in DEPENDS")
+            if module is None:
+                continue
+        if module not in depends:
+            unknown.append(f"{rel}: module '{module}' is not declared in framework/modules.cmake")
             continue
         with open(path, encoding="utf-8", errors="replace") as f:
             for number, line in enumerate(f, 1):
@@ -115,25 +196,36 @@ def main():
                 if target is None or target == module:
                     continue
                 edges.add((module, target))
-                if target in DEPENDS[module]:
+                if target in depends[module]:
                     continue
                 key = (rel, name)
                 if key in KNOWN:
                     seen_known.add(key)
                     continue
                 problems.append(f"{rel}:{number}: module {module} includes {name} "
-                                f"(module {target}, not among its dependencies {DEPENDS[module]})")
+                                f"(module {target}, not among its dependencies {depends[module]})")
     stale = [f"{f} -> {h}: listed in KNOWN but no longer there; take it off" for (f, h) in KNOWN
              if (f, h) not in seen_known]
+    return unknown + problems + stale, edges, len(seen_known)
+
+
+def main():
+    project = sys.argv[1]
+    depends = closure(declared_modules(project))
+    problems, edges, known = include_problems(project, depends)
+    linked = None
+    if "--objects" in sys.argv:
+        object_list, linked = object_problems(sys.argv[sys.argv.index("--objects") + 1], depends)
+        problems += object_list
     if "--graph" in sys.argv:
         for a, b in sorted(edges):
             print(f"{a} -> {b}")
-    for p in unknown + problems + stale:
+    for p in problems:
         print(p)
-    known = len(seen_known)
-    print(f"check_modules: {len(DEPENDS)} modules, {len(edges)} dependencies used, "
-          f"{len(problems) + len(unknown) + len(stale)} problem(s), {known} known violation(s) left")
-    return 1 if problems or unknown or stale else 0
+    objects = "" if linked is None else f", {len(linked)} used between the libraries"
+    print(f"check_modules: {len(depends)} modules, {len(edges)} dependencies included{objects}, "
+          f"{len(problems)} problem(s), {known} known violation(s) left")
+    return 1 if problems else 0
 
 
 if __name__ == "__main__":

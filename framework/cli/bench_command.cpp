@@ -38,6 +38,7 @@
 #include "voxlab/gl_object.h"
 #include "voxlab/ray_profile.h"
 #include "voxlab/render_engine.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/volume.h"
 #include "voxlab/volume_bricks.h"
 #include "voxlab_gl.h"
@@ -299,12 +300,12 @@ int benchCommand(int argc, char** argv) {
     if (f.warmup < 0 || f.warmup > 1000) throw Error("option --warmup: must be in 0..1000");
     const Renderer& renderer = rendererRegistry().get(scene.renderer);
     renderer.resolveParameters(scene.parameters);
-    f.counted = samplesCountable(scene);
+    f.counted = samplesCountable(rendererRegistry(), scene);
 
     const Volume volume = loadVolume(scene.dataset);
     auto context = createHeadlessContext(parseHeadlessBackend(args.get("gl").value_or("auto")));
     f.gl = context->description();
-    RenderEngine engine(args.get("implementation").value_or(""));
+    RenderEngine engine(rendererRegistry(), args.get("implementation").value_or(""));
     engine.setVolume(volume);
     timeFrames(engine, volume, scene, f);
     countTakenSamples(engine, scene, args, f);

@@ -28,6 +28,7 @@
 #include "voxlab/shader.h"
 #include "voxlab/stage_host.h"
 #include "voxlab/stage_library.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/volume.h"
 #include "voxlab/worker_results.h"
 
@@ -62,7 +63,7 @@ std::string runawayLoop(const StageManifest& manifest, std::map<std::string, Vol
     for (const GradedScene& graded : manifest.scenes) {
         try {
             Scene scene = gradingSceneFor(graded, volumes, engine);
-            if (!samplesCountable(scene)) continue;
+            if (!samplesCountable(rendererRegistry(), scene)) continue;
             const double shrink = std::min(1.0, double(kLoopCheckSide) / std::max(scene.width, scene.height));
             scene.width = std::max(1, int(std::lround(scene.width * shrink)));
             scene.height = std::max(1, int(std::lround(scene.height * shrink)));
@@ -154,7 +155,7 @@ int gradeWorkerCommand(int argc, char** argv) {
     auto context = createHeadlessContext();
     // The engine lives until the checks are done, as the GL context does.
     std::map<std::string, Volume> volumes;
-    RenderEngine engine(implementation);
+    RenderEngine engine(rendererRegistry(), implementation);
     engine.setCountingByUniform(true);  // the runaway-loop check reuses the render's program
     engine.setCompileOnce(true);  // a scene's program draws once or twice: compiling is most of its time
     engine.setExactFiltering(true);  // verdicts that hold on any conforming GL (voxlab/filtering.glsl)

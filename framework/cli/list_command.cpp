@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "voxlab/function_checks.h"
 #include "voxlab/renderer.h"
+#include "voxlab/stage_registry.h"
 
 namespace voxlab::cli {
 

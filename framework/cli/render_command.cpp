@@ -10,6 +10,7 @@
 #include "voxlab/gl_context.h"
 #include "voxlab/grading.h"
 #include "voxlab/render_engine.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/volume.h"
 
 namespace voxlab::cli {
@@ -59,7 +60,7 @@ int renderCommand(int argc, char** argv) {
     const Volume volume = loadVolume(scene.dataset);
     const auto t1 = Clock::now();
     auto context = createHeadlessContext(parseHeadlessBackend(args.get("gl").value_or("auto")));
-    RenderEngine engine(args.get("implementation").value_or(""));
+    RenderEngine engine(rendererRegistry(), args.get("implementation").value_or(""));
     engine.setExactFiltering(args.has("exact-filtering"));
     engine.setVolume(volume);
     const auto t2 = Clock::now();

@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "voxlab/error.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/volume.h"
 #ifdef VOXLAB_HAVE_VIEWER
 #include "voxlab/deck.h"

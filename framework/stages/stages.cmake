@@ -51,7 +51,7 @@ set(VOXLAB_STAGES
 
 # voxlab_stage_sources(<sources var> <generated include folder> <with checks>)
 # Sets <sources var> to the stages' framework C++ (check.cpp left out unless
-# <with checks>; command.cpp and test_*.cpp always), VOXLAB_STAGE_COMMAND_SOURCES
+# <with checks>; command.cpp and test_*.cpp always) and stage_registry.cpp, VOXLAB_STAGE_COMMAND_SOURCES
 # to their command.cpp files and VOXLAB_STAGE_INCLUDE_DIRS to their include/
 # folders, and writes into <folder> voxlab_stage_renderers.inc,
 # voxlab_stage_checks.inc, voxlab_stage_components.inc and
@@ -93,6 +93,8 @@ function(voxlab_stage_sources out_sources include_dir with_checks)
       string(APPEND components "VOXLAB_STAGE_COMPONENTS(${stage})\n")
     endif()
   endforeach()
+  # What gathers them (voxlab/stage_registry.h), from the lists below.
+  list(APPEND sources ${root}/stage_registry.cpp)
   file(CONFIGURE OUTPUT ${include_dir}/voxlab_stage_renderers.inc CONTENT "${renderers}")
   file(CONFIGURE OUTPUT ${include_dir}/voxlab_stage_checks.inc CONTENT "${checks}")
   file(CONFIGURE OUTPUT ${include_dir}/voxlab_stage_components.inc CONTENT "${components}")

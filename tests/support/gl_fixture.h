@@ -11,6 +11,7 @@
 #include "voxlab/image.h"
 #include "voxlab/render_engine.h"
 #include "voxlab/scene.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/volume.h"
 
 #include "datasets.h"
@@ -26,7 +27,7 @@ public:
         // copy of reference/); by default the reference solution.
         const char* impl = std::getenv("VOXLAB_IMPLEMENTATION");
         if (!engine_) {
-            engine_ = std::make_unique<RenderEngine>(impl ? impl : "");
+            engine_ = std::make_unique<RenderEngine>(rendererRegistry(), impl ? impl : "");
             engine_->setCompileOnce(true);  // as the grader compiles (most tests draw a program once)
         }
     }

@@ -1,5 +1,6 @@
 // voxlab: what the stages' function checks share (framework/stages/STAGE/
-// check.cpp; voxlab/function_checks.h says what a check is and records).
+// check.cpp; voxlab/function_checks.h, in the grader, says what a check is
+// and records).
 //
 // Every check draws its inputs from its own std::mt19937 with a fixed seed.
 // Raw 32-bit outputs are turned into numbers here (CheckRandom), never by
@@ -37,7 +38,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
-#include "voxlab/function_checks.h"
+#include "voxlab/function_check_info.h"
 #include "voxlab/glsl_probe.h"
 #include "voxlab/shader.h"
 

@@ -28,12 +28,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "voxlab/function_check_info.h"
+
 namespace voxlab {
 
 // Names of every check, and the stage each belongs to.
-struct FunctionCheckInfo {
-    std::string name, stage, description;
-};
 const std::vector<FunctionCheckInfo>& functionChecks();
 
 // Runs the check's function(s) on the check's fixed pseudo-random inputs

@@ -53,7 +53,7 @@ struct BrickLayout;
 // Whether RenderEngine::countSamples() can count a scene's samples: its
 // renderer casts rays (slices take no samples along rays) and it has no
 // cutting plane (whose two halves are composed into one image).
-bool samplesCountable(const Scene& scene);
+bool samplesCountable(const RendererRegistry& renderers, const Scene& scene);
 
 // The implementation an engine runs when given none: the project's
 // reference/, or the starter code assignments/ in a student release (which
@@ -62,9 +62,12 @@ std::string defaultImplementationRoot();
 
 class RenderEngine {
 public:
-    // `implementationRoot` is searched first for stage shaders: the project's
-    // reference/ by default, or a student's submission folder.
-    explicit RenderEngine(std::string implementationRoot = "");
+    // The engine draws with the renderers of `renderers` (which must outlive
+    // it; voxlab/stage_registry.h has the built-in ones), looked up by the
+    // scene's renderer id. `implementationRoot` is searched first for stage
+    // shaders: the project's reference/ by default, or a student's
+    // submission folder.
+    explicit RenderEngine(const RendererRegistry& renderers, std::string implementationRoot = "");
     ~RenderEngine();
     RenderEngine(const RenderEngine&) = delete;
     RenderEngine& operator=(const RenderEngine&) = delete;
@@ -133,6 +136,7 @@ public:
     // compositing two engines' images (the viewer's split view).
     unsigned offscreenTexture() const { return target_.color; }
     const std::string& implementationRoot() const { return implementationRoot_; }
+    const RendererRegistry& renderers() const { return renderers_; }
 
     // The samples `scene` takes in all, summed over its pixels: the scene is
     // rendered once with every sample_position() counted (see
@@ -260,6 +264,7 @@ private:
                      const ShaderConstants& constants, BrickCombine combine,
                      const std::function<void(const ShaderProgram&)>& prepare);
 
+    const RendererRegistry& renderers_;
     std::string implementationRoot_;
     ShaderLibrary library_;
     const Volume* volume_ = nullptr;

@@ -248,11 +248,9 @@ private:
     std::vector<std::unique_ptr<Renderer>> renderers_;
 };
 
-// The built-in renderers, in teaching order: those of each stage folder
-// (framework/stages/stages.cmake), which adds them in its renderer.cpp:
-//   VOXLAB_RENDERERS(mip) { registry.add<MipRenderer>(); }
-const RendererRegistry& rendererRegistry();
-
+// A stage folder's renderer.cpp adds its renderers to the registry
+// (voxlab/stage_registry.h holds the built-in one):
+//   VOXLAB_RENDERERS(my_stage) { registry.add<MyRenderer>(); }
 #define VOXLAB_RENDERERS(stage)                                           \
     namespace voxlab {                                                    \
     void stageRenderers_##stage(RendererRegistry& registry);              \

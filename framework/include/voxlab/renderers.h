@@ -66,7 +66,8 @@ private:
 // the switch) and vec4 STAGE_component(vec4 c, vec3 p, Ray ray), which the
 // entry shader calls, where the switch is on, at the component's phase:
 // in place of the classification, on the classified sample, or on the lit
-// one (the generated components.glsl, compositeComponentsGlsl() below).
+// one (the generated components.glsl, compositeComponentsGlsl() of
+// voxlab/stage_registry.h).
 class CompositeComponent {
 public:
     enum class Phase { Classify, Classified, Lit };
@@ -101,15 +102,6 @@ private:
     std::vector<std::string> stages_;
     std::string stage_;
 };
-
-// The GLSL that calls every component at its phase (which the compositing
-// stage's entry shader includes as its components.glsl): the components'
-// files, their switches' uniforms, and components_classify(p, ray, out c),
-// components_classified(c, p, ray), components_lit(c, p, ray).
-std::string compositeComponentsGlsl();
-
-// Every stage's components, in the stages' order (framework/stages/stages.cmake).
-const CompositeComponents& compositeComponents();
 
 #define VOXLAB_COMPOSITE_COMPONENTS(stage)                                \
     namespace voxlab {                                                    \

@@ -9,6 +9,7 @@
 #include "voxlab/image.h"
 #include "voxlab/render_engine.h"
 #include "voxlab/scene.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/volume.h"
 
 namespace voxlab {
@@ -52,7 +53,7 @@ json selfCheckStage(const std::string& stage, const SelfCheckOptions& options) {
     const StageManifest manifest = loadStageManifest(options.tree, stage);
     const fs::path out = options.outDir;
     fs::create_directories(out);
-    RenderEngine engine(options.tree);
+    RenderEngine engine(rendererRegistry(), options.tree);
     std::map<std::string, Volume> volumes;  // outlives nothing but the engine's use of it below
     json scenes = json::array();
     double weightSum = 0.0, credit = 0.0;

@@ -12,6 +12,7 @@
 
 #include "voxlab/project_root.h"
 #include "voxlab/renderer.h"
+#include "voxlab/stage_registry.h"
 
 namespace voxlab::grading {
 

@@ -63,11 +63,12 @@ std::string defaultImplementationRoot() {
     return projectRoot() + (std::filesystem::is_directory(projectRoot() + "/reference") ? "/reference" : "/assignments");
 }
 
-RenderEngine::RenderEngine(std::string implementationRoot)
-    : implementationRoot_(checkedImplementationRoot(implementationRoot)),
+RenderEngine::RenderEngine(const RendererRegistry& renderers, std::string implementationRoot)
+    : renderers_(renderers),
+      implementationRoot_(checkedImplementationRoot(implementationRoot)),
       library_(ShaderLibrary::forImplementation(implementationRoot_)) {
     // Entry shaders the renderers make themselves (ray-value stages).
-    for (const auto& renderer : rendererRegistry().all())
+    for (const auto& renderer : renderers_.all())
         for (const auto& [name, text] : renderer->generatedShaders()) library_.addGenerated(name, text);
     vao_ = GlVertexArray::make();  // core profile: drawing needs a bound VAO
     volumeTextures_ = std::make_unique<VolumeTextures>(softwareRenderer());
@@ -533,7 +534,7 @@ unsigned RenderEngine::sliceStack(int axis) {
 
 RenderEngine::Pass RenderEngine::scenePass(const Scene& scene) const {
     Pass pass;
-    pass.renderer = &rendererRegistry().get(scene.renderer);
+    pass.renderer = &renderers_.get(scene.renderer);
     pass.values = pass.renderer->resolveParameters(scene.parameters, volume_->valueRange());
     pass.transferFunction = scene.transferFunction ? &*scene.transferFunction : nullptr;
     if (scene.cuttingPlane) {
@@ -563,7 +564,7 @@ void RenderEngine::drawCut(const Scene& scene, unsigned framebuffer) {
         glClear(GL_COLOR_BUFFER_BIT);
     } else {
         Pass negative = positive;
-        negative.renderer = &rendererRegistry().get(cut.otherRenderer);
+        negative.renderer = &renderers_.get(cut.otherRenderer);
         negative.values = negative.renderer->resolveParameters(cut.otherParameters, range);
         negative.transferFunction = cut.otherTransferFunction ? &*cut.otherTransferFunction : nullptr;
         negative.slot = 1;
@@ -612,13 +613,13 @@ Image RenderEngine::render(const Scene& scene) {
     return readBack();
 }
 
-bool samplesCountable(const Scene& scene) {
-    const Renderer* renderer = rendererRegistry().find(scene.renderer);
+bool samplesCountable(const RendererRegistry& renderers, const Scene& scene) {
+    const Renderer* renderer = renderers.find(scene.renderer);
     return renderer && !renderer->objectOrder() && !scene.cuttingPlane;
 }
 
 double RenderEngine::countSamples(const Scene& scene) {
-    if (!samplesCountable(scene))
+    if (!samplesCountable(renderers_, scene))
         throw Error("counting samples: '" + scene.renderer +
                     "' scene: only ray-casting renderers without a cutting plane take samples that can be counted");
     countingSamples_ = true;

@@ -16,6 +16,7 @@
 #include "viewer_state.h"
 #include "voxlab/camera_controller.h"
 #include "voxlab/error.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/viewer.h"
 #include "voxlab/window.h"
 

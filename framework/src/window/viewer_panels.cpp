@@ -19,6 +19,7 @@
 #include "voxlab/error.h"
 #include "voxlab/ray_profile_panel.h"
 #include "voxlab/renderer.h"
+#include "voxlab/stage_registry.h"
 
 namespace voxlab::viewer {
 

@@ -24,6 +24,7 @@
 #include "voxlab/error.h"
 #include "voxlab/ray_profile.h"
 #include "voxlab/shader.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/volume_pyramid.h"
 
 namespace voxlab::viewer {
@@ -78,7 +79,7 @@ void prepareCoarse(State& s) {
     }
     for (Side* side : {&s.main, &s.other})
         if (side->engine && !side->coarse) {
-            side->coarse = std::make_unique<RenderEngine>(side->engine->implementationRoot());
+            side->coarse = std::make_unique<RenderEngine>(side->engine->renderers(), side->engine->implementationRoot());
             side->coarse->setVolume(*s.coarseVolume);
         }
 }
@@ -102,7 +103,7 @@ double renderSide(Side& side, const Scene& scene, bool countSamples, bool coarse
 }
 
 void setImplementation(Side& side, const std::string& root, const Volume& volume) {
-    auto engine = std::make_unique<RenderEngine>(root);  // throws for a folder that does not exist
+    auto engine = std::make_unique<RenderEngine>(rendererRegistry(), root);  // throws for a folder that does not exist
     engine->setVolume(volume);
     side.engine = std::move(engine);
     side.coarse.reset();  // made again, with this implementation, on the next drag
@@ -221,7 +222,7 @@ void renderWhole(State& s, const Scene& mainScene, const Scene& otherScene, bool
     const Volume& shown = coarse ? *s.coarseVolume : *s.volume;
     const auto t0 = Clock::now();
     s.samplesShown =
-        s.showSamples && samplesCountable(mainScene) && (s.split == SplitMode::Off || samplesCountable(otherScene));
+        s.showSamples && samplesCountable(rendererRegistry(), mainScene) && (s.split == SplitMode::Off || samplesCountable(rendererRegistry(), otherScene));
     s.samplesTaken = renderSide(s.main, mainScene, s.samplesShown, coarse);
     if (s.split != SplitMode::Off) renderSide(s.other, otherScene, s.samplesShown, coarse);
     glFinish();

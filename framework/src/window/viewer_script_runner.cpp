@@ -9,6 +9,7 @@
 
 #include "voxlab/camera_controller.h"
 #include "voxlab/error.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/transfer_function.h"
 #include "voxlab/transfer_function_2d.h"
 

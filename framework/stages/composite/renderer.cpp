@@ -3,6 +3,7 @@
 #include "voxlab/renderers.h"
 
 #include "voxlab/error.h"
+#include "voxlab/stage_registry.h"
 #include "voxlab/volume.h"
 
 namespace voxlab {

@@ -42,6 +42,7 @@
 
 #include "support/gl_fixture.h"
 #include "voxlab/camera.h"
+#include "voxlab/stage_registry.h"
 
 namespace voxlab::testing {
 namespace {
@@ -284,7 +285,7 @@ TEST_F(Preintegration, TheTableFollowsTheTransferFunctionAndTheStep) {
     const Image first = engine().render(scene);
     engine().render(other);
     EXPECT_EQ(meanDifference(engine().render(scene), first), 0.0);
-    RenderEngine fresh;
+    RenderEngine fresh(rendererRegistry());
     fresh.setVolume(volume);
     EXPECT_EQ(meanDifference(fresh.render(other), engine().render(other)), 0.0);
 }

@@ -44,6 +44,7 @@
 #include "support/gl_fixture.h"
 #include "voxlab/camera.h"
 #include "voxlab/phantoms.h"
+#include "voxlab/stage_registry.h"
 
 namespace voxlab::testing {
 namespace {
@@ -196,7 +197,7 @@ TEST_F(Shadows, TheLightVolumeFollowsTheLightTheTransferFunctionItsResolutionAnd
     }
     EXPECT_EQ(difference, 0.0);
     EXPECT_GT(turnedDifference, 0.2) << "turning the light did not move the shadow";
-    RenderEngine fresh;
+    RenderEngine fresh(rendererRegistry());
     fresh.setVolume(volume);
     const Image freshTurned = fresh.render(turned);
     engine().setVolume(volume);
@@ -216,7 +217,7 @@ TEST_F(Shadows, AnEngineSwitchesBetweenPreintegrationAndShadows) {
     EXPECT_NO_THROW(engine().render(table));
     const Image shadows = engine().render(shadowScene(true));
     EXPECT_NO_THROW(engine().render(table));
-    RenderEngine fresh;
+    RenderEngine fresh(rendererRegistry());
     fresh.setVolume(volume);
     const Image expected = fresh.render(shadowScene(true));
     for (std::size_t i = 0; i < expected.rgba.size(); ++i) ASSERT_EQ(shadows.rgba[i], expected.rgba[i]);

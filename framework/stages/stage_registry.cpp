@@ -1,11 +1,10 @@
 // voxlab: the built-in renderers, in teaching order, and the compositing
-// components. Each stage's framework/stages/<stage>/renderer.cpp adds its
+// components (voxlab/stage_registry.h). Each stage's framework/stages/<stage>/renderer.cpp adds its
 // renderers (VOXLAB_RENDERERS), its component.cpp its component
 // (VOXLAB_COMPOSITE_COMPONENTS); the lists of those stages are generated
 // from framework/stages/stages.cmake, in its order. Nothing registers itself
 // behind the linker's back.
-#include "voxlab/renderer.h"
-#include "voxlab/renderers.h"
+#include "voxlab/stage_registry.h"
 
 #define VOXLAB_STAGE_RENDERERS(stage) void stageRenderers_##stage(RendererRegistry& registry);
 namespace voxlab {
@@ -62,7 +61,7 @@ std::string compositeComponentsGlsl() {
         case Phase::Lit: lit += "    if (" + on + " != 0) c = " + call + "c, p, ray);\n"; break;
         }
     }
-    return "// Generated (compositeComponentsGlsl, framework/src/renderers/renderer_registry.cpp): the\n"
+    return "// Generated (compositeComponentsGlsl, framework/stages/stage_registry.cpp): the\n"
            "// compositing components of framework/stages/*/component.glsl, each under its switch.\n"
            "#ifndef VOXLAB_COMPOSITE_COMPONENTS_GLSL\n#define VOXLAB_COMPOSITE_COMPONENTS_GLSL\n" +
            includes + uniforms +

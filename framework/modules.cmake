@@ -29,6 +29,8 @@ voxlab_module(render DEPENDS gl mesh)            # the engine
 voxlab_module(renderers DEPENDS render)          # what several stages' renderers share
 voxlab_module(checks DEPENDS gl scene)           # what the stages' function checks share, GLSL probes
 voxlab_module(stages DEPENDS renderers checks)   # the stage folders, and their registry
-voxlab_module(grade DEPENDS stages)              # the grader: checks list, sandbox, scores, reports
+voxlab_module(report DEPENDS image)              # HTML reports, and students' text kept as data
+voxlab_module(sandbox DEPENDS mesh)              # child processes under default deny, the stage host
+voxlab_module(grade DEPENDS stages sandbox report)  # the grader: jobs, the checks' list, scores
 voxlab_module(window DEPENDS stages)             # the viewer
 voxlab_module(cli DEPENDS window grade)          # the `voxlab` program (framework/cli/)

@@ -40,9 +40,9 @@ set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
   src/io/fd_io.cpp
   src/io/number_text.cpp
   # the report writers (fuzz_report_text): pure text, no GL or processes
-  src/grade/untrusted_text.cpp
-  src/grade/html_text.cpp
-  src/grade/html_report.cpp
-  src/grade/html_report_style.cpp
-  src/grade/html_class_report.cpp
+  src/report/untrusted_text.cpp
+  src/report/html_text.cpp
+  src/report/html_report.cpp
+  src/report/html_report_style.cpp
+  src/report/html_class_report.cpp
   src/grade/grade_results.cpp)

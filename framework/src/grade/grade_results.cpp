@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "html_text.h"
+#include "../report/html_text.h"
 #include "voxlab/grader.h"
 #include "voxlab/untrusted_text.h"
 

@@ -81,7 +81,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "html_text.h"
+#include "../report/html_text.h"
 #include "voxlab/atomic_file.h"
 #include "voxlab/error.h"
 #include "voxlab/grader.h"

@@ -435,6 +435,41 @@ TEST_F(HostileSubmissions, AStagesOversizedResultIsAnErrorNamingIt) {
     EXPECT_NE(report_.find("planeBoxPolygon returned 100000 values (at most 64)"), std::string::npos) << s["message"];
 }
 
+// Marching cubes calls its stage in batches (a slab's cubes, then its new
+// edges: one round trip each to the stage host). A call that throws in the
+// middle of a batch is that batch's answer, named in the report, and the
+// calls after it are not made; a case outside 0..255 is refused by name.
+TEST_F(HostileSubmissions, AFailingCallInsideABatchIsAnErrorNamingIt) {
+    fs::path sub = submissionWith("batch_throw", "marching_cubes", "reference");
+    const fs::path file = sub / "marching_cubes/marching_cubes.cpp";
+    std::string text = readText(file);
+    const std::string signature = "glm::dvec3 edgeCrossing(glm::dvec3 a, glm::dvec3 b, double va, double vb, double isovalue) {";
+    ASSERT_NE(text.find(signature), std::string::npos) << "the reference's edgeCrossing changed its signature";
+    text.replace(text.find(signature), signature.size(),
+                 "glm::dvec3 referenceCrossing(glm::dvec3 a, glm::dvec3 b, double va, double vb, double isovalue) {");
+    text += "namespace voxlab {\n"
+            "glm::dvec3 edgeCrossing(glm::dvec3 a, glm::dvec3 b, double va, double vb, double isovalue) {\n"
+            "    static int calls = 0;\n"
+            "    if (++calls == 300) throw std::runtime_error(\"crossing 300 refused\");\n"
+            "    return referenceCrossing(a, b, va, vb, isovalue);\n}\n}  // namespace voxlab\n";
+    std::ofstream(file) << text;
+    const json s = gradeAndCheck(sub, "marching_cubes", "", true);
+    EXPECT_LT(s["score"].get<double>(), 10.0);
+    EXPECT_NE(report_.find("crossing 300 refused"), std::string::npos) << s["message"];
+
+    sub = submissionWith("batch_case", "marching_cubes", "reference");
+    text = readText(sub / "marching_cubes/marching_cubes.cpp");
+    const std::string cubeCase = "int cubeCase(const double values[8], double isovalue) {";
+    ASSERT_NE(text.find(cubeCase), std::string::npos) << "the reference's cubeCase changed its signature";
+    text.replace(text.find(cubeCase), cubeCase.size(), "int referenceCase(const double values[8], double isovalue) {");
+    text += "namespace voxlab {\nint cubeCase(const double values[8], double isovalue) {\n"
+            "    const int c = referenceCase(values, isovalue);\n    return c == 0 ? c : c + 256;\n}\n}  // namespace voxlab\n";
+    std::ofstream(sub / "marching_cubes/marching_cubes.cpp") << text;
+    const json t = gradeAndCheck(sub, "marching_cubes", "", true);
+    EXPECT_LT(t["score"].get<double>(), 10.0);
+    EXPECT_NE(report_.find(", not a case 0..255"), std::string::npos) << t["message"];
+}
+
 // A build may not use unbounded memory or disk: an assembler told to
 // embed 1.5 GB (the largest system library the compiler may read, over
 // and over; a device such as /dev/zero it refuses to embed).

@@ -51,45 +51,53 @@ void answering(Serve serve) {
 // protocol: stage_host_protocol.h).
 template <class R, class... A>
 void serveCall(R (*f)(A...), const char* name) {
-    std::tuple<Arg<A>...> args;
-    const bool read = std::apply([](auto&... arg) { return (arg.read(0) && ...); }, args);
-    if (!read) _exit(0);
+    Call<A...> call;
+    if (!call.read(0)) _exit(0);
     answering([&] {
         if (!f) throw NotImplemented(name);
-        const R result = std::apply([&](const auto&... arg) { return f(arg.get()...); }, args);
+        const R result = call.apply(f);
         if (const std::string why = Answer<R>::tooLarge(result); !why.empty())
             throw Error(std::string(name) + " returned " + why);
         if (!Answer<R>::write(kAnswers, result)) _exit(3);
     });
 }
 
-// A batch ('c' cube cases, 'x' edge crossings): uint32 count <= kMaxBatch,
-// then 8 doubles a call and the isovalue; the answer is 'O' and the count's
-// results, or the first call's error.
-void serveBatch(char op, const CppStages& stages) {
+// Serves a batch of calls of `f`: a count <= kMaxBatch and the calls'
+// arguments, read at once; the answer is every result, or the first
+// failing call's error.
+template <class R, class... A>
+void serveBatch(R (*f)(A...), const char* name) {
     std::uint32_t count = 0;
     if (!readAll(0, &count, 4)) _exit(0);
     if (count > kMaxBatch) _exit(2);
-    std::vector<double> a(std::size_t(count) * 8 + 1);
-    if (!readAll(0, a.data(), a.size() * sizeof(double))) _exit(0);
-    const double isovalue = a.back();
+    std::vector<char> wire(std::size_t(count) * Call<A...>::kWireSize + 1);
+    if (!readAll(0, wire.data(), wire.size() - 1)) _exit(0);
     answering([&] {
-        if (op == 'c') {
-            if (!stages.cubeCase) throw NotImplemented("cubeCase");
-            std::vector<std::int32_t> cases(count);
-            for (std::uint32_t i = 0; i < count; ++i) cases[i] = stages.cubeCase(&a[8 * std::size_t(i)], isovalue);
-            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, cases.data(), cases.size() * 4)) _exit(3);
-        } else {
-            if (!stages.edgeCrossing) throw NotImplemented("edgeCrossing");
-            std::vector<glm::dvec3> points(count);
-            for (std::uint32_t i = 0; i < count; ++i) {
-                const double* c = &a[8 * std::size_t(i)];
-                points[i] = stages.edgeCrossing({c[0], c[1], c[2]}, {c[3], c[4], c[5]}, c[6], c[7], isovalue);
-            }
-            if (!sendAll(kAnswers, "O", 1) || !sendAll(kAnswers, points.data(), points.size() * sizeof(glm::dvec3)))
-                _exit(3);
+        if (!f) throw NotImplemented(name);
+        std::string out = "O";
+        Call<A...> call;
+        for (std::uint32_t i = 0; i < count; ++i) {
+            call.load(wire.data() + std::size_t(i) * Call<A...>::kWireSize);
+            const R result = call.apply(f);
+            if (const std::string why = Answer<R>::tooLarge(result); !why.empty())
+                throw Error(std::string(name) + " returned " + why);
+            Answer<R>::put(out, result);
         }
+        if (!sendAll(kAnswers, out.data(), out.size())) _exit(3);
     });
+}
+
+// A batch's function (its op byte follows kBatch).
+void serveBatchOf(const CppStages& stages) {
+    unsigned char op = 0;
+    if (!readAll(0, &op, 1)) _exit(0);
+    switch (op) {
+#define VOXLAB_STAGE_SERVE_BATCH(name, Result, Parameters) \
+    case kOp_##name: serveBatch(stages.name, #name); break;
+        VOXLAB_CPP_STAGE_FUNCTIONS(VOXLAB_STAGE_SERVE_BATCH)
+#undef VOXLAB_STAGE_SERVE_BATCH
+        default: _exit(2);
+    }
 }
 
 // Serves calls on stdin, answering on fd 3, until stdin closes.
@@ -112,8 +120,7 @@ int serve(const std::string& library) {
     signal(SIGPIPE, SIG_DFL);
     for (char op; readAll(0, &op, 1);) {
         switch (static_cast<unsigned char>(op)) {
-            case 'c':
-            case 'x': serveBatch(op, stages); break;
+            case kBatch: serveBatchOf(stages); break;
 #define VOXLAB_STAGE_SERVE(name, Result, Parameters) \
     case kOp_##name: serveCall(stages.name, #name); break;
             VOXLAB_CPP_STAGE_FUNCTIONS(VOXLAB_STAGE_SERVE)

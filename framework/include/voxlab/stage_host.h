@@ -22,11 +22,11 @@
 //   response  'O' then the result (the bytes of its value; a vector as a
 //             uint32 count <= 64 and its elements), or 'N'/'E' then uint32
 //             length and the message of a NotImplemented / other exception.
-//   batches  'c' (cubeCase) and 'x' (edgeCrossing): uint32 count <= 16384,
-//             then 8 doubles a call (the 8 values; a, b, va, vb) and one
-//             isovalue; 'O' then count int32 / count points of 3 doubles, or
-//             the first failing call's 'N'/'E' (stage_library.h's
-//             StageBatches: marching cubes sends a slab of cubes at a time).
+//   batch     0xFF, the function's index, a uint32 count <= 16384 and each
+//             call's arguments as above; 'O' then the count's results one
+//             after another, or the first failing call's 'N'/'E'
+//             (stage_library.h's StageBatch: marching cubes sends a slab of
+//             cubes at a time).
 // One call is one round trip (microseconds); a batch is one round trip for
 // thousands of calls.
 #pragma once

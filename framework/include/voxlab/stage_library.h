@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -45,21 +46,26 @@ const CppStages& cppStages();
 
 // Many calls of one function at once, as marching cubes makes them (a slab
 // of cubes, then the slab's new edges): the same results as calling the
-// table's function for each in order, stopping at the first that throws.
-// By default a loop over the table; where the function runs in a stage
-// host (stage_host.h) a batch is one round trip instead of one per call.
-struct EdgeCrossingCall {
-    glm::dvec3 a, b;
-    double va, vb;
+// table's function on each call's arguments in order, stopping at the first
+// call that throws. By default a loop over the table; where the function
+// runs in a stage host (stage_host.h), one round trip for thousands of calls
+// instead of one each. Every C++ stage function has its batch.
+template <class F>
+struct StageBatch;
+template <class Result, class... Parameters>
+struct StageBatch<Result(Parameters...)> {
+    // One call's arguments (what a pointer points to must outlive the run).
+    using Call = std::tuple<Parameters...>;
+    void (*run)(const Call* calls, std::size_t count, Result* results) = nullptr;
 };
-struct StageBatches {
-    // values: 8 per cube (the corner order of cubeCase's contract); cases: count.
-    void (*cubeCases)(const double* values, std::size_t count, double isovalue, int* cases);
-    void (*edgeCrossings)(const EdgeCrossingCall* calls, std::size_t count, double isovalue, glm::dvec3* points);
+struct CppStageBatches {
+#define VOXLAB_STAGE_BATCH(name, Result, Parameters) StageBatch<Result Parameters> name;
+    VOXLAB_CPP_STAGE_FUNCTIONS(VOXLAB_STAGE_BATCH)
+#undef VOXLAB_STAGE_BATCH
 };
-const StageBatches& stageBatches();
-// Replaces the batches that `batches` sets (the non-null ones).
-void overrideStageBatches(const StageBatches& batches);
+const CppStageBatches& stageBatches();
+// Replaces the batches that `batches` sets (those whose run is not null).
+void overrideStageBatches(const CppStageBatches& batches);
 
 // Whether `name` is a function of the table above ("planeBoxPolygon").
 bool isStageFunction(const std::string& name);

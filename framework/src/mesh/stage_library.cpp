@@ -42,27 +42,38 @@ const CppStages& cppStages() { return table(); }
 
 namespace {
 
-void loopCubeCases(const double* values, std::size_t count, double isovalue, int* cases) {
-    for (std::size_t i = 0; i < count; ++i) cases[i] = table().cubeCase(values + 8 * i, isovalue);
-}
+// The batch that calls the table's function (Member) once per call.
+template <class F>
+struct LoopBatch;
+template <class R, class... A>
+struct LoopBatch<R(A...)> {
+    template <R (*CppStages::*Member)(A...)>
+    static void run(const std::tuple<A...>* calls, std::size_t count, R* results) {
+        for (std::size_t i = 0; i < count; ++i) results[i] = std::apply(table().*Member, calls[i]);
+    }
+};
 
-void loopEdgeCrossings(const EdgeCrossingCall* calls, std::size_t count, double isovalue, glm::dvec3* points) {
-    for (std::size_t i = 0; i < count; ++i)
-        points[i] = table().edgeCrossing(calls[i].a, calls[i].b, calls[i].va, calls[i].vb, isovalue);
-}
-
-StageBatches& batches() {
-    static StageBatches b{&loopCubeCases, &loopEdgeCrossings};
+CppStageBatches& batches() {
+    static CppStageBatches b = [] {
+        CppStageBatches loops;
+#define VOXLAB_STAGE_LOOP(name, Result, Parameters) \
+    loops.name.run = &LoopBatch<Result Parameters>::run<&CppStages::name>;
+        VOXLAB_CPP_STAGE_FUNCTIONS(VOXLAB_STAGE_LOOP)
+#undef VOXLAB_STAGE_LOOP
+        return loops;
+    }();
     return b;
 }
 
 }  // namespace
 
-const StageBatches& stageBatches() { return batches(); }
+const CppStageBatches& stageBatches() { return batches(); }
 
-void overrideStageBatches(const StageBatches& offered) {
-    if (offered.cubeCases) batches().cubeCases = offered.cubeCases;
-    if (offered.edgeCrossings) batches().edgeCrossings = offered.edgeCrossings;
+void overrideStageBatches(const CppStageBatches& offered) {
+#define VOXLAB_STAGE_OVERRIDE(name, Result, Parameters) \
+    if (offered.name.run) batches().name.run = offered.name.run;
+    VOXLAB_CPP_STAGE_FUNCTIONS(VOXLAB_STAGE_OVERRIDE)
+#undef VOXLAB_STAGE_OVERRIDE
 }
 
 bool isStageFunction(const std::string& name) {

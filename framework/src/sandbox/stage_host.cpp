@@ -68,35 +68,6 @@ void awaitAnswer() {
     throw Error(message);
 }
 
-// Sends a batch of `count` calls of 8 doubles each (kMaxBatch at a time).
-template <class Answer>
-void callBatch(char op, const double* args, std::size_t count, double isovalue, Answer* answers) {
-    Host& h = host();
-    for (std::size_t first = 0; first < count; first += kMaxBatch) {
-        const std::uint32_t n = std::uint32_t(std::min<std::size_t>(kMaxBatch, count - first));
-        if (!sendAll(h.to, &op, 1) || !sendAll(h.to, &n, 4) || !sendAll(h.to, args + 8 * first, n * 8 * sizeof(double)) ||
-            !sendAll(h.to, &isovalue, sizeof isovalue))
-            hostFailed();
-        awaitAnswer();
-        if (!readAll(h.from, answers + first, n * sizeof(Answer))) hostFailed();
-    }
-}
-
-void remoteCubeCases(const double* values, std::size_t count, double isovalue, int* cases) {
-    static_assert(sizeof(int) == sizeof(std::int32_t));
-    callBatch('c', values, count, isovalue, cases);
-}
-
-void remoteEdgeCrossings(const EdgeCrossingCall* calls, std::size_t count, double isovalue, glm::dvec3* points) {
-    std::vector<double> args(count * 8);
-    for (std::size_t i = 0; i < count; ++i) {
-        const EdgeCrossingCall& c = calls[i];
-        const double packed[8] = {c.a.x, c.a.y, c.a.z, c.b.x, c.b.y, c.b.z, c.va, c.vb};
-        std::copy(packed, packed + 8, &args[8 * i]);
-    }
-    callBatch('x', args.data(), count, isovalue, points);
-}
-
 // The remote stand-in of the stage function with op `Op` and type R(A...):
 // sends the call, waits for the answer and reads the result.
 template <unsigned char Op, class F>
@@ -112,6 +83,20 @@ struct Remote<Op, R(A...)> {
         R result{};
         if (!Answer<R>::read(h.from, &result)) hostFailed();
         return result;
+    }
+    // The batch: up to kMaxBatch calls a round trip.
+    static void run(const std::tuple<A...>* calls, std::size_t count, R* results) {
+        Host& h = host();
+        for (std::size_t first = 0; first < count; first += kMaxBatch) {
+            const std::uint32_t n = std::uint32_t(std::min<std::size_t>(kMaxBatch, count - first));
+            std::string message = {char(kBatch), char(Op)};
+            message.append(reinterpret_cast<const char*>(&n), 4);
+            for (std::size_t i = first; i < first + n; ++i)
+                std::apply([&](const auto&... a) { (Arg<A>::put(message, a), ...); }, calls[i]);
+            if (!sendAll(h.to, message.data(), message.size())) hostFailed();
+            awaitAnswer();
+            if (!Answer<R>::readMany(h.from, results + first, n)) hostFailed();
+        }
     }
 };
 
@@ -146,18 +131,20 @@ void useStageHost(const std::string& program, const std::string& library, const 
     Host& h = host();
     h = {toHost[1], fromHost[0], pid, library.substr(library.rfind('/') + 1), ""};
     CppStages routed{};
+    CppStageBatches batches{};
     for (const std::string& f : functions) {
         bool known = false;
-#define VOXLAB_STAGE_ROUTE(name, Result, Parameters) \
-    if (f == #name) routed.name = &Remote<kOp_##name, Result Parameters>::call, known = true;
+#define VOXLAB_STAGE_ROUTE(name, Result, Parameters)                        \
+    if (f == #name) {                                                       \
+        routed.name = &Remote<kOp_##name, Result Parameters>::call;         \
+        batches.name.run = &Remote<kOp_##name, Result Parameters>::run;     \
+        known = true;                                                       \
+    }
         VOXLAB_CPP_STAGE_FUNCTIONS(VOXLAB_STAGE_ROUTE)
 #undef VOXLAB_STAGE_ROUTE
         if (!known) throw Error("'" + f + "' is not a C++ stage function");
     }
     overrideStageFunctions(routed);
-    StageBatches batches{};
-    if (routed.cubeCase) batches.cubeCases = &remoteCubeCases;
-    if (routed.edgeCrossing) batches.edgeCrossings = &remoteEdgeCrossings;
     overrideStageBatches(batches);
 }
 

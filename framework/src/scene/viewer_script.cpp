@@ -92,115 +92,103 @@ public:
 
     void check() const {
         const std::string& c = step_.command;
-        if (c == "load" || c == "scene") return exactly(1, "expected 1 path");
-        if (c == "renderer") return exactly(1, "expected 1 renderer name");
-        if (c == "implementation") return exactly(1, "expected a folder or 'reference'");
-        if (c == "screenshot") return exactly(1, "expected 1 output path");
-        if (c == kTransferFunctionName || c == kTransferFunction2DName) return exactly(1, "expected 1 path or 'none'");
-        if (c == "press") {
+        if (c == "camera") return checkCamera();
+        if (!checkWords(c)) checkNumbers(c);
+    }
+
+private:
+    // The commands whose arguments are paths, names or words; false for another.
+    bool checkWords(const std::string& c) const {
+        if (c == "load" || c == "scene") exactly(1, "expected 1 path");
+        else if (c == "renderer") exactly(1, "expected 1 renderer name");
+        else if (c == "implementation") exactly(1, "expected a folder or 'reference'");
+        else if (c == "screenshot") exactly(1, "expected 1 output path");
+        else if (c == kTransferFunctionName || c == kTransferFunction2DName) exactly(1, "expected 1 path or 'none'");
+        else if (c == "quit" || c == "rendering") exactly(0, "expected no arguments");
+        else if (c == "right") exactly(1, "expected a renderer name or 'same'");
+        else if (c == "press") {
             if (step_.args.empty()) fail("expected one or more keys");
             for (int i = 0; i < int(step_.args.size()); ++i)
                 if (!isOneOf(arg(i), {"left", "right", "up", "down", "pageup", "pagedown", "home", "end", "plus", "minus", "p"}))
                     fail("expected keys: left, right, up, down, pageup, pagedown, home, end, plus, minus or p", i);
-            return;
-        }
-        if (c == "key")
-            return oneWord("expected a key: left, right, up, down, pageup, pagedown, home, end, plus, minus or p",
-                           {"left", "right", "up", "down", "pageup", "pagedown", "home", "end", "plus", "minus", "p"});
-        if (c == "ui-scale") {
-            const char* msg = "expected 1 number in [0.75, 4]";
-            exactly(1, msg);
-            const double x = numberAt(0, msg);
-            if (!(x >= 0.75 && x <= 4.0)) fail(msg, 0);
-            return;
-        }
-        if (c == "enlarge")
-            return oneWord("expected axial, coronal, sagittal or off", {"axial", "coronal", "sagittal", "off"});
-        if (c == "slide") {
-            const char* msg = "expected 1 slide number >= 1";
-            exactly(1, msg);
-            if (integerAt(0, msg) < 1) fail(msg, 0);
-            return;
-        }
-        if (c == "quit" || c == "rendering") return exactly(0, "expected no arguments");
-        if (c == "right") return exactly(1, "expected a renderer name or 'same'");
-        if (c == "divider") {
-            const char* msg = "expected 1 number in (0, 1): the divider's place across the window";
-            exactly(1, msg);
-            const double x = numberAt(0, msg);
-            if (!(x > 0.0 && x < 1.0)) fail(msg, 0);
-            return;
-        }
-        if (c == "param") {
-            const char* msg = "expected a name and a number (or true/false)";
-            exactly(2, msg);
-            double v;
-            if (!parseNumber(arg(1), &v) && !isOneOf(arg(1), {"true", "false"})) fail(msg, 1);
-            return;
-        }
-        if (c == "step") {
-            const char* msg = "expected 1 number > 0";
-            exactly(1, msg);
-            if (!(numberAt(0, msg) > 0.0)) fail(msg, 0);
-            return;
-        }
-        if (c == "interpolation")
-            return oneWord("expected nearest, trilinear, hardware, bspline or catmull-rom",
-                           {"nearest", "trilinear", "hardware", "bspline", "catmull-rom"});
-        if (c == "drag") {
-            const char* msg = "expected DX DY (pixels per frame) and a number of frames > 0";
-            exactly(3, msg);
-            numberAt(0, msg), numberAt(1, msg);
-            if (integerAt(2, msg) <= 0) fail(msg, 2);
-            return;
-        }
-        if (c == "drag-plane") {
-            const char* msg = "expected a clip plane's number (1..6) and DX DY in window pixels";
-            exactly(3, msg);
-            const int n = integerAt(0, msg);
-            if (n < 1 || n > int(kMaxClipPlanes)) fail(msg, 0);
-            numberAt(1, msg), numberAt(2, msg);
-            return;
-        }
-        if (c == "rotate" || c == "click") {
-            const char* msg = "expected 2 numbers";
-            exactly(2, msg);
-            numberAt(0, msg), numberAt(1, msg);
-            return;
-        }
-        if (c == "window") {
-            const char* msg = "expected 2 numbers LO HI with HI > LO";
-            exactly(2, msg);
-            if (!(numberAt(1, msg) > numberAt(0, msg))) fail(msg);
-            return;
-        }
-        if (c == "samples" || c == "skipping" || c == "lod") return oneWord("expected on or off", {"on", "off"});
-        if (c == "split") return oneWord("expected on, off or difference", {"on", "off", "difference"});
-        if (c == "panel") {
+        } else if (c == "key")
+            oneWord("expected a key: left, right, up, down, pageup, pagedown, home, end, plus, minus or p",
+                    {"left", "right", "up", "down", "pageup", "pagedown", "home", "end", "plus", "minus", "p"});
+        else if (c == "enlarge")
+            oneWord("expected axial, coronal, sagittal or off", {"axial", "coronal", "sagittal", "off"});
+        else if (c == "interpolation")
+            oneWord("expected nearest, trilinear, hardware, bspline or catmull-rom",
+                    {"nearest", "trilinear", "hardware", "bspline", "catmull-rom"});
+        else if (c == "samples" || c == "skipping" || c == "lod") oneWord("expected on or off", {"on", "off"});
+        else if (c == "split") oneWord("expected on, off or difference", {"on", "off", "difference"});
+        else if (c == "panel") {
             const std::string msg = "expected a panel (" + viewerPanelList() + ") and on or off";
             exactly(2, msg);
             const std::vector<std::string>& panels = viewerPanels();
             if (std::find(panels.begin(), panels.end(), arg(0)) == panels.end()) fail(msg, 0);
             if (!isOneOf(arg(1), {"on", "off"})) fail(msg, 1);
-            return;
-        }
-        if (c == "size") {
+        } else
+            return false;
+        return true;
+    }
+
+    // The commands whose arguments are numbers (a parameter: a name and a
+    // number or true/false).
+    void checkNumbers(const std::string& c) const {
+        if (c == "ui-scale") {
+            const char* msg = "expected 1 number in [0.75, 4]";
+            exactly(1, msg);
+            const double x = numberAt(0, msg);
+            if (!(x >= 0.75 && x <= 4.0)) fail(msg, 0);
+        } else if (c == "slide") {
+            const char* msg = "expected 1 slide number >= 1";
+            exactly(1, msg);
+            if (integerAt(0, msg) < 1) fail(msg, 0);
+        } else if (c == "divider") {
+            const char* msg = "expected 1 number in (0, 1): the divider's place across the window";
+            exactly(1, msg);
+            const double x = numberAt(0, msg);
+            if (!(x > 0.0 && x < 1.0)) fail(msg, 0);
+        } else if (c == "param") {
+            const char* msg = "expected a name and a number (or true/false)";
+            exactly(2, msg);
+            double v;
+            if (!parseNumber(arg(1), &v) && !isOneOf(arg(1), {"true", "false"})) fail(msg, 1);
+        } else if (c == "step") {
+            const char* msg = "expected 1 number > 0";
+            exactly(1, msg);
+            if (!(numberAt(0, msg) > 0.0)) fail(msg, 0);
+        } else if (c == "drag") {
+            const char* msg = "expected DX DY (pixels per frame) and a number of frames > 0";
+            exactly(3, msg);
+            numberAt(0, msg), numberAt(1, msg);
+            if (integerAt(2, msg) <= 0) fail(msg, 2);
+        } else if (c == "drag-plane") {
+            const char* msg = "expected a clip plane's number (1..6) and DX DY in window pixels";
+            exactly(3, msg);
+            const int n = integerAt(0, msg);
+            if (n < 1 || n > int(kMaxClipPlanes)) fail(msg, 0);
+            numberAt(1, msg), numberAt(2, msg);
+        } else if (c == "rotate" || c == "click") {
+            const char* msg = "expected 2 numbers";
+            exactly(2, msg);
+            numberAt(0, msg), numberAt(1, msg);
+        } else if (c == "window") {
+            const char* msg = "expected 2 numbers LO HI with HI > LO";
+            exactly(2, msg);
+            if (!(numberAt(1, msg) > numberAt(0, msg))) fail(msg);
+        } else if (c == "size") {
             const char* msg = "expected 2 integers > 0";
             exactly(2, msg);
             for (int i = 0; i < 2; ++i)
                 if (integerAt(i, msg) <= 0) fail(msg, i);
-            return;
-        }
-        if (c == "wait") {
+        } else if (c == "wait") {
             const char* msg = "expected 1 integer >= 0 (frames)";
             exactly(1, msg);
             if (integerAt(0, msg) < 0) fail(msg, 0);
-            return;
         }
-        if (c == "camera") return checkCamera();
     }
 
-private:
     [[noreturn]] void fail(const std::string& msg) const { failStep(step_, msg); }
     [[noreturn]] void fail(const std::string& msg, int i) const { fail(msg + ", got '" + arg(i) + "'"); }
     const std::string& arg(int i) const { return step_.args[size_t(i)]; }

@@ -412,6 +412,249 @@ std::uint64_t countAt(const Histogram2D& h, double f, double g) {
     return h.counts[std::size_t(y) * std::size_t(h.valueBins) + std::size_t(x)];
 }
 
+// One frame of the editor: what its parts below share.
+struct Frame2D {
+    std::vector<Tf2dWidget>& widgets;
+    int* selected;
+    EditorState& state;
+    const Plot& plot;
+    ImVec2 mouse;
+    Hit hit;            // what the mouse is over (none while dragging)
+    bool hovered, active;
+    bool room;          // fewer than kMaxTf2dWidgets widgets
+    double vlo, vhi, gmax;
+};
+
+void addWidget(Frame2D& f, const Tf2dWidget& w) {
+    f.widgets.push_back(w);
+    *f.selected = int(f.widgets.size()) - 1;
+}
+
+// The left button: a click selects and starts a drag (a double click on
+// nothing adds a triangle, held for moving); moving the mouse drags.
+bool leftButton(Frame2D& f) {
+    Drag& drag = f.state.drag;
+    bool changed = false;
+    if (f.hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+        f.state.clickStamp = ++clickClock();
+        *f.selected = f.hit.widget;
+        if (f.hit.widget >= 0) {
+            ImVec2 at = f.mouse;
+            double handleGradient = 0.0;
+            if (f.hit.grip != Grip::Move)
+                for (const Handle& h : handlesOf(f.widgets[std::size_t(f.hit.widget)], f.hit.widget, f.plot))
+                    if (h.hit.grip == f.hit.grip && h.hit.corner == f.hit.corner)
+                        at = h.position, handleGradient = h.gradient;
+            drag = {f.hit, ImVec2(f.mouse.x - at.x, f.mouse.y - at.y), f.mouse, f.mouse,
+                    f.widgets[std::size_t(f.hit.widget)], handleGradient};
+        } else if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && f.room) {
+            addWidget(f, newTriangle(f.plot.valueAt(f.mouse.x), f.plot, f.widgets.size()));
+            drag = {{*f.selected, Grip::Move, -1}, ImVec2(0, 0), f.mouse, f.mouse, f.widgets.back(), 0.0};
+            changed = true;
+        }
+    } else if (f.active && drag.hit.widget >= 0 && ImGui::IsMouseDown(ImGuiMouseButton_Left) &&
+               (f.mouse.x != drag.lastMouse.x || f.mouse.y != drag.lastMouse.y)) {
+        const Tf2dWidget w = dragged(drag, f.plot, f.mouse);
+        Tf2dWidget& target = f.widgets[std::size_t(drag.hit.widget)];
+        if (!(w == target)) target = w, changed = true;
+        drag.lastMouse = f.mouse;
+    }
+    if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) drag.hit = {};
+    return changed;
+}
+
+// A right click removes the widget under the mouse, or offers new ones
+// there; Delete removes the selected one (if the last click was here).
+bool rightButtonAndDelete(Frame2D& f) {
+    const Drag& drag = f.state.drag;
+    int remove = -1;
+    if (f.hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && drag.hit.widget < 0) {
+        f.state.clickStamp = ++clickClock();
+        if (f.hit.widget >= 0) {
+            remove = f.hit.widget;
+        } else {
+            f.state.popupAt = {f.plot.valueAt(f.mouse.x), f.plot.gradientAt(f.mouse.y)};
+            ImGui::OpenPopup("##add");
+        }
+    }
+    if (remove < 0 && *f.selected >= 0 && drag.hit.widget < 0 && f.state.clickStamp == clickClock() &&
+        deletePressed())
+        remove = *f.selected;
+    bool changed = false;
+    if (remove >= 0) {
+        f.widgets.erase(f.widgets.begin() + remove);
+        if (*f.selected == remove) *f.selected = -1;
+        else if (*f.selected > remove) --*f.selected;
+        changed = true;
+    }
+    if (ImGui::BeginPopup("##add")) {
+        ImGui::TextDisabled("at value %s", formatValue(f.state.popupAt.x).c_str());
+        ImGui::BeginDisabled(!f.room);
+        if (ImGui::MenuItem("add a triangle here"))
+            addWidget(f, newTriangle(f.state.popupAt.x, f.plot, f.widgets.size())), changed = true;
+        if (ImGui::MenuItem("add a box here"))
+            addWidget(f, newBox(f.state.popupAt.x, f.state.popupAt.y, f.plot, f.widgets.size())), changed = true;
+        ImGui::EndDisabled();
+        ImGui::EndPopup();
+    }
+    return changed;
+}
+
+// The frame, the histogram, the widgets (the selected on top), the
+// crosshair, the gradient axis's top and the handles.
+void drawPlot(const Frame2D& f, const EditorFrame& frame, const Histogram2D& histogram, bool logHistogram) {
+    const Plot& plot = f.plot;
+    const float rounding = ImGui::GetStyle().FrameRounding;
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->AddRectFilled(frame.origin, frame.max, styleColour(ImGuiCol_FrameBg), rounding);
+    draw->PushClipRect(plot.min, plot.max, true);
+    drawHistogram(draw, plot, histogram, logHistogram);
+    const std::vector<int> order = topFirst(int(f.widgets.size()), *f.selected);
+    for (auto it = order.rbegin(); it != order.rend(); ++it)
+        drawWidget(draw, plot, f.widgets[std::size_t(*it)], *it == *f.selected);
+    if (f.hovered && f.hit.widget < 0 && f.state.drag.hit.widget < 0) {
+        const ImU32 cross = styleColour(ImGuiCol_Text, 0.25f);
+        draw->AddLine(ImVec2(f.mouse.x, plot.min.y), ImVec2(f.mouse.x, plot.max.y), cross);
+        draw->AddLine(ImVec2(plot.min.x, f.mouse.y), ImVec2(plot.max.x, f.mouse.y), cross);
+    }
+    draw->PopClipRect();
+    // The gradient magnitude at the top: the largest, or the zoomed axis's top, highlighted.
+    const std::string top = "gradient " + formatValue(plot.top);
+    drawLabel(draw, ImVec2(plot.min.x + 3.0f, plot.min.y + 1.0f), top.c_str(),
+              f.state.zoom > 1.0f ? highlightColour() : styleColour(ImGuiCol_TextDisabled));
+    draw->PushClipRect(frame.origin, frame.max, true);
+    for (auto it = order.rbegin(); it != order.rend(); ++it) {
+        const Tf2dWidget& w = f.widgets[std::size_t(*it)];
+        for (const Handle& h : handlesOf(w, *it, plot)) {
+            const bool isHovered = f.hit.widget == *it && f.hit.grip == h.hit.grip && f.hit.corner == h.hit.corner;
+            drawHandle(draw, h.position, colour(w.color, 1.0f), *it == *f.selected, isHovered);
+        }
+    }
+    draw->PopClipRect();
+    draw->AddRect(frame.origin, frame.max, styleColour(ImGuiCol_Border), rounding);
+}
+
+// The widget dragged or under the mouse, or what lies under it.
+void hoverTooltip(const Frame2D& f, const Histogram2D& histogram, const TransferFunction2D& tf) {
+    const Drag& drag = f.state.drag;
+    if (drag.hit.widget >= 0 && f.active) {
+        widgetTooltip(f.widgets[std::size_t(drag.hit.widget)], drag.hit.widget);
+    } else if (f.hovered && f.hit.widget >= 0) {
+        widgetTooltip(f.widgets[std::size_t(f.hit.widget)], f.hit.widget);
+    } else if (f.hovered) {
+        const double value = std::clamp(f.plot.valueAt(f.mouse.x), f.vlo, f.vhi);
+        const double g = std::clamp(f.plot.gradientAt(f.mouse.y), 0.0, f.plot.top);
+        ImGui::BeginTooltip();
+        ImGui::Text("value     %s", formatValue(value).c_str());
+        ImGui::Text("gradient  %s", formatValue(g).c_str());
+        ImGui::TextDisabled("voxels    %llu", (unsigned long long)countAt(histogram, value, g));
+        ImGui::TextDisabled("function opacity %.3f", tf.evaluate(value, g).a);
+        ImGui::TextDisabled("double-click: add a triangle");
+        ImGui::EndTooltip();
+    }
+}
+
+// The value axis's ends, with the label between them.
+void valueAxis(const Frame2D& f, const EditorFrame& frame, const char* label) {
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    const float y = ImGui::GetCursorScreenPos().y;
+    const std::string loText = formatValue(f.vlo), hiText = formatValue(f.vhi), title = visibleLabel(label);
+    const ImU32 text = styleColour(ImGuiCol_TextDisabled);
+    draw->AddText(ImVec2(f.plot.min.x, y), text, loText.c_str());
+    draw->AddText(ImVec2(f.plot.max.x - ImGui::CalcTextSize(hiText.c_str()).x, y), text, hiText.c_str());
+    const std::string middle = title.empty() ? "value" : title;
+    draw->AddText(ImVec2(frame.origin.x + (frame.width - ImGui::CalcTextSize(middle.c_str()).x) * 0.5f, y),
+                  title.empty() ? text : styleColour(ImGuiCol_Text), middle.c_str());
+    ImGui::Dummy(ImVec2(frame.width, ImGui::GetTextLineHeight()));
+}
+
+// A triangle's value and radius, or a box's value and gradient ranges.
+bool shapeFields(const Frame2D& f, Tf2dWidget& w) {
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const double vlo = f.vlo, vhi = f.vhi, gmax = f.gmax;
+    const float speed = float((vhi - vlo) / 1000.0);
+    const float half = (ImGui::GetContentRegionAvail().x - style.ItemSpacing.x) * 0.5f;
+    bool changed = false;
+    ImGui::SetNextItemWidth(half);
+    if (w.kind == Tf2dWidget::Kind::Triangle) {
+        double value = w.valueRange.x;
+        if (ImGui::DragScalar("##value", ImGuiDataType_Double, &value, speed, &vlo, &vhi, "value %.5g",
+                              ImGuiSliderFlags_AlwaysClamp) &&
+            value != w.valueRange.x)
+            w.valueRange = glm::dvec2(std::clamp(value, vlo, vhi)), changed = true;
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(half);
+        double radius = w.radius;
+        const double rMin = f.plot.minRadius(), rMax = 2.0 * (vhi - vlo) / f.plot.top;
+        if (ImGui::DragScalar("##radius", ImGuiDataType_Double, &radius, float(rMax / 2000.0), &rMin, &rMax,
+                              "radius %.4g", ImGuiSliderFlags_AlwaysClamp) &&
+            radius != w.radius)
+            w.radius = std::clamp(radius, rMin, rMax), changed = true;
+        return changed;
+    }
+    double v[2] = {w.valueRange.x, w.valueRange.y};
+    if (ImGui::DragScalarN("##value", ImGuiDataType_Double, v, 2, speed, &vlo, &vhi, "value %.5g",
+                           ImGuiSliderFlags_AlwaysClamp))
+        w.valueRange = {std::min(v[0], v[1]), std::max(v[0], v[1])}, changed = true;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("value range");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(half);
+    double g[2] = {w.gradientRange.x, w.gradientRange.y};
+    const double gLo = 0.0;
+    if (ImGui::DragScalarN("##gradient", ImGuiDataType_Double, g, 2, float(gmax / 1000.0), &gLo, &gmax,
+                           "gradient %.4g", ImGuiSliderFlags_AlwaysClamp))
+        w.gradientRange = {std::min(g[0], g[1]), std::max(g[0], g[1])}, changed = true;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("gradient magnitude range");
+    return changed;
+}
+
+// The selected widget's colour, opacity, delete button and shape.
+bool selectedWidgetControls(Frame2D& f) {
+    const ImGuiStyle& style = ImGui::GetStyle();
+    ImGui::PushID("##widget");
+    Tf2dWidget& w = f.widgets[std::size_t(*f.selected)];
+    bool changed = false;
+    float rgb[3] = {w.color.r, w.color.g, w.color.b};
+    if (ImGui::ColorEdit3("##colour", rgb, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel))
+        w.color = glm::clamp(glm::vec3(rgb[0], rgb[1], rgb[2]), 0.0f, 1.0f), changed = true;
+    ImGui::SameLine();
+    const float deleteWidth = ImGui::CalcTextSize("delete").x + 2.0f * style.FramePadding.x;
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - deleteWidth - style.ItemSpacing.x);
+    float alpha = w.alpha;
+    if (ImGui::SliderFloat("##opacity", &alpha, 0.0f, 1.0f, "opacity %.3f", ImGuiSliderFlags_AlwaysClamp) &&
+        alpha != w.alpha)
+        w.alpha = std::clamp(alpha, 0.0f, 1.0f), changed = true;
+    ImGui::SameLine();
+    const bool erase = ImGui::Button("delete");
+    changed |= shapeFields(f, w);
+    if (erase) {
+        f.widgets.erase(f.widgets.begin() + *f.selected);
+        *f.selected = -1;
+        changed = true;
+    }
+    ImGui::PopID();
+    return changed;
+}
+
+// The buttons that add widgets, and the selected widget's fields.
+bool widgetControls(Frame2D& f) {
+    bool changed = false;
+    ImGui::BeginDisabled(!f.room);
+    if (ImGui::Button("+ triangle"))
+        addWidget(f, newTriangle(0.5 * (f.vlo + f.vhi), f.plot, f.widgets.size())), changed = true;
+    ImGui::SameLine();
+    if (ImGui::Button("+ box"))
+        addWidget(f, newBox(0.5 * (f.vlo + f.vhi), 0.5 * f.plot.top, f.plot, f.widgets.size())), changed = true;
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::TextDisabled("%d of %d widgets", int(f.widgets.size()), kMaxTf2dWidgets);
+    if (*f.selected >= 0)
+        changed |= selectedWidgetControls(f);
+    else
+        ImGui::TextDisabled("double-click: add   drag: move, resize   right-click: delete   wheel: zoom");
+    return changed;
+}
+
 }  // namespace
 
 bool TransferFunction2DEditor(const char* label, TransferFunction2D* tf, const Histogram2D& histogram, int* selected,
@@ -421,233 +664,31 @@ bool TransferFunction2DEditor(const char* label, TransferFunction2D* tf, const H
     if (!selected) selected = ImGui::GetStateStorage()->GetIntRef(ImGui::GetID("##selected"), -1);
     std::vector<Tf2dWidget>& widgets = tf->widgets();
     if (*selected >= int(widgets.size()) || *selected < -1) *selected = -1;
-    bool changed = false;
 
-    const ImGuiIO& io = ImGui::GetIO();
-    const ImGuiStyle& style = ImGui::GetStyle();
     double vlo = histogram.valueLo, vhi = histogram.valueHi, gmax = histogram.gradientMax;
     if (!(std::isfinite(vlo) && std::isfinite(vhi))) vlo = 0.0, vhi = 1.0;
     if (!(vhi > vlo)) vhi = vlo + 1.0;
     if (!(std::isfinite(gmax) && gmax > 0.0)) gmax = 1.0;
     EditorState& state = persistentState<EditorState>(id);
-
     const EditorFrame frame = editorFrame(options.height, &state.zoom, kMaxZoom);
-    const ImVec2 origin = frame.origin, frameMax = frame.max;
-    const float width = frame.width;
-    const bool hovered = frame.hovered, active = frame.active;
     const Plot plot{frame.plotMin(), frame.plotMax(), vlo, vhi, gmax, gmax / double(state.zoom)};
-    const ImVec2 mouse = io.MousePos;
-    Drag& drag = state.drag;
-    if (drag.hit.widget >= int(widgets.size())) drag.hit = {};
-    const Hit hit = hovered && drag.hit.widget < 0 ? hitTest(widgets, plot, mouse, *selected) : Hit{};
-    const bool room = int(widgets.size()) < kMaxTf2dWidgets;
+    const ImVec2 mouse = ImGui::GetIO().MousePos;
+    if (state.drag.hit.widget >= int(widgets.size())) state.drag.hit = {};
+    const Hit hit = frame.hovered && state.drag.hit.widget < 0 ? hitTest(widgets, plot, mouse, *selected) : Hit{};
+    Frame2D f{widgets, selected, state, plot, mouse, hit, frame.hovered, frame.active,
+              int(widgets.size()) < kMaxTf2dWidgets, vlo, vhi, gmax};
 
-    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
-        state.clickStamp = ++clickClock();
-        *selected = hit.widget;
-        if (hit.widget >= 0) {
-            ImVec2 at = mouse;
-            double handleGradient = 0.0;
-            if (hit.grip != Grip::Move)
-                for (const Handle& h : handlesOf(widgets[std::size_t(hit.widget)], hit.widget, plot))
-                    if (h.hit.grip == hit.grip && h.hit.corner == hit.corner)
-                        at = h.position, handleGradient = h.gradient;
-            drag = {hit, ImVec2(mouse.x - at.x, mouse.y - at.y), mouse, mouse, widgets[std::size_t(hit.widget)],
-                    handleGradient};
-        } else if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && room) {
-            // A new triangle at the value under the mouse, held for moving.
-            widgets.push_back(newTriangle(plot.valueAt(mouse.x), plot, widgets.size()));
-            *selected = int(widgets.size()) - 1;
-            drag = {{*selected, Grip::Move, -1}, ImVec2(0, 0), mouse, mouse, widgets.back(), 0.0};
-            changed = true;
-        }
-    } else if (active && drag.hit.widget >= 0 && ImGui::IsMouseDown(ImGuiMouseButton_Left) &&
-               (mouse.x != drag.lastMouse.x || mouse.y != drag.lastMouse.y)) {
-        const Tf2dWidget w = dragged(drag, plot, mouse);
-        Tf2dWidget& target = widgets[std::size_t(drag.hit.widget)];
-        if (!(w == target)) target = w, changed = true;
-        drag.lastMouse = mouse;
-    }
-    if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) drag.hit = {};
-
-    // Right click: remove the widget under the mouse, or offer new ones there.
-    int remove = -1;
-    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && drag.hit.widget < 0) {
-        state.clickStamp = ++clickClock();
-        if (hit.widget >= 0) {
-            remove = hit.widget;
-        } else {
-            state.popupAt = {plot.valueAt(mouse.x), plot.gradientAt(mouse.y)};
-            ImGui::OpenPopup("##add");
-        }
-    }
-    if (remove < 0 && *selected >= 0 && drag.hit.widget < 0 && state.clickStamp == clickClock() && deletePressed())
-        remove = *selected;
-    if (remove >= 0) {
-        widgets.erase(widgets.begin() + remove);
-        if (*selected == remove) *selected = -1;
-        else if (*selected > remove) --*selected;
-        changed = true;
-    }
-    if (ImGui::BeginPopup("##add")) {
-        ImGui::TextDisabled("at value %s", formatValue(state.popupAt.x).c_str());
-        ImGui::BeginDisabled(!room);
-        if (ImGui::MenuItem("add a triangle here")) {
-            widgets.push_back(newTriangle(state.popupAt.x, plot, widgets.size()));
-            *selected = int(widgets.size()) - 1, changed = true;
-        }
-        if (ImGui::MenuItem("add a box here")) {
-            widgets.push_back(newBox(state.popupAt.x, state.popupAt.y, plot, widgets.size()));
-            *selected = int(widgets.size()) - 1, changed = true;
-        }
-        ImGui::EndDisabled();
-        ImGui::EndPopup();
-    }
-
-    // Drawing: frame, histogram, widgets (the selected on top), handles.
-    ImDrawList* draw = ImGui::GetWindowDrawList();
-    draw->AddRectFilled(origin, frameMax, styleColour(ImGuiCol_FrameBg), style.FrameRounding);
-    draw->PushClipRect(plot.min, plot.max, true);
-    drawHistogram(draw, plot, histogram, options.logHistogram);
-    const std::vector<int> order = topFirst(int(widgets.size()), *selected);
-    for (auto it = order.rbegin(); it != order.rend(); ++it)
-        drawWidget(draw, plot, widgets[std::size_t(*it)], *it == *selected);
-    if (hovered && hit.widget < 0 && drag.hit.widget < 0) {
-        const ImU32 cross = styleColour(ImGuiCol_Text, 0.25f);
-        draw->AddLine(ImVec2(mouse.x, plot.min.y), ImVec2(mouse.x, plot.max.y), cross);
-        draw->AddLine(ImVec2(plot.min.x, mouse.y), ImVec2(plot.max.x, mouse.y), cross);
-    }
-    draw->PopClipRect();
-    {
-        // The gradient magnitude at the top: the largest, or the zoomed axis's top, highlighted.
-        const std::string top = "gradient " + formatValue(plot.top);
-        drawLabel(draw, ImVec2(plot.min.x + 3.0f, plot.min.y + 1.0f), top.c_str(),
-                  state.zoom > 1.0f ? highlightColour() : styleColour(ImGuiCol_TextDisabled));
-    }
-    draw->PushClipRect(origin, frameMax, true);
-    for (auto it = order.rbegin(); it != order.rend(); ++it) {
-        const Tf2dWidget& w = widgets[std::size_t(*it)];
-        for (const Handle& h : handlesOf(w, *it, plot)) {
-            const bool isHovered = hit.widget == *it && hit.grip == h.hit.grip && hit.corner == h.hit.corner;
-            drawHandle(draw, h.position, colour(w.color, 1.0f), *it == *selected, isHovered);
-        }
-    }
-    draw->PopClipRect();
-    draw->AddRect(origin, frameMax, styleColour(ImGuiCol_Border), style.FrameRounding);
-
-    if (drag.hit.widget >= 0 && active) {
-        widgetTooltip(widgets[std::size_t(drag.hit.widget)], drag.hit.widget);
-    } else if (hovered && hit.widget >= 0) {
-        widgetTooltip(widgets[std::size_t(hit.widget)], hit.widget);
-    } else if (hovered) {
-        const double f = std::clamp(plot.valueAt(mouse.x), vlo, vhi);
-        const double g = std::clamp(plot.gradientAt(mouse.y), 0.0, plot.top);
-        ImGui::BeginTooltip();
-        ImGui::Text("value     %s", formatValue(f).c_str());
-        ImGui::Text("gradient  %s", formatValue(g).c_str());
-        ImGui::TextDisabled("voxels    %llu", (unsigned long long)countAt(histogram, f, g));
-        ImGui::TextDisabled("function opacity %.3f", tf->evaluate(f, g).a);
-        ImGui::TextDisabled("double-click: add a triangle");
-        ImGui::EndTooltip();
-    }
-
-    // The value axis's ends, with the label between them.
-    {
-        const float y = ImGui::GetCursorScreenPos().y;
-        const std::string loText = formatValue(vlo), hiText = formatValue(vhi), title = visibleLabel(label);
-        const ImU32 text = styleColour(ImGuiCol_TextDisabled);
-        draw->AddText(ImVec2(plot.min.x, y), text, loText.c_str());
-        draw->AddText(ImVec2(plot.max.x - ImGui::CalcTextSize(hiText.c_str()).x, y), text, hiText.c_str());
-        const std::string middle = title.empty() ? "value" : title;
-        draw->AddText(ImVec2(origin.x + (width - ImGui::CalcTextSize(middle.c_str()).x) * 0.5f, y),
-                      title.empty() ? text : styleColour(ImGuiCol_Text), middle.c_str());
-        ImGui::Dummy(ImVec2(width, ImGui::GetTextLineHeight()));
-    }
-
+    bool changed = leftButton(f);
+    f.room = int(widgets.size()) < kMaxTf2dWidgets;
+    changed |= rightButtonAndDelete(f);
+    f.room = int(widgets.size()) < kMaxTf2dWidgets;
+    drawPlot(f, frame, histogram, options.logHistogram);
+    hoverTooltip(f, histogram, *tf);
+    valueAxis(f, frame, label);
     if (options.showWidgetControls) {
-        ImGui::BeginDisabled(!room);
-        if (ImGui::Button("+ triangle")) {
-            widgets.push_back(newTriangle(0.5 * (vlo + vhi), plot, widgets.size()));
-            *selected = int(widgets.size()) - 1, changed = true;
-        }
-        ImGui::SameLine();
-        if (ImGui::Button("+ box")) {
-            widgets.push_back(newBox(0.5 * (vlo + vhi), 0.5 * plot.top, plot, widgets.size()));
-            *selected = int(widgets.size()) - 1, changed = true;
-        }
-        ImGui::EndDisabled();
-        ImGui::SameLine();
-        ImGui::TextDisabled("%d of %d widgets", int(widgets.size()), kMaxTf2dWidgets);
-
-        if (*selected >= 0) {
-            ImGui::PushID("##widget");
-            Tf2dWidget& w = widgets[std::size_t(*selected)];
-            float rgb[3] = {w.color.r, w.color.g, w.color.b};
-            if (ImGui::ColorEdit3("##colour", rgb, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel)) {
-                w.color = glm::clamp(glm::vec3(rgb[0], rgb[1], rgb[2]), 0.0f, 1.0f);
-                changed = true;
-            }
-            ImGui::SameLine();
-            const float deleteWidth = ImGui::CalcTextSize("delete").x + 2.0f * style.FramePadding.x;
-            const float fields = ImGui::GetContentRegionAvail().x - deleteWidth - style.ItemSpacing.x;
-            ImGui::SetNextItemWidth(fields);
-            float alpha = w.alpha;
-            if (ImGui::SliderFloat("##opacity", &alpha, 0.0f, 1.0f, "opacity %.3f", ImGuiSliderFlags_AlwaysClamp) &&
-                alpha != w.alpha) {
-                w.alpha = std::clamp(alpha, 0.0f, 1.0f);
-                changed = true;
-            }
-            ImGui::SameLine();
-            bool erase = ImGui::Button("delete");
-
-            const float speed = float((vhi - vlo) / 1000.0);
-            const float half = (ImGui::GetContentRegionAvail().x - style.ItemSpacing.x) * 0.5f;
-            if (w.kind == Tf2dWidget::Kind::Triangle) {
-                ImGui::SetNextItemWidth(half);
-                double value = w.valueRange.x;
-                if (ImGui::DragScalar("##value", ImGuiDataType_Double, &value, speed, &vlo, &vhi, "value %.5g",
-                                      ImGuiSliderFlags_AlwaysClamp) &&
-                    value != w.valueRange.x)
-                    w.valueRange = glm::dvec2(std::clamp(value, vlo, vhi)), changed = true;
-                ImGui::SameLine();
-                ImGui::SetNextItemWidth(half);
-                double radius = w.radius;
-                const double rMin = plot.minRadius(), rMax = 2.0 * (vhi - vlo) / plot.top;
-                if (ImGui::DragScalar("##radius", ImGuiDataType_Double, &radius, float(rMax / 2000.0), &rMin, &rMax,
-                                      "radius %.4g", ImGuiSliderFlags_AlwaysClamp) &&
-                    radius != w.radius)
-                    w.radius = std::clamp(radius, rMin, rMax), changed = true;
-            } else {
-                ImGui::SetNextItemWidth(half);
-                double v[2] = {w.valueRange.x, w.valueRange.y};
-                if (ImGui::DragScalarN("##value", ImGuiDataType_Double, v, 2, speed, &vlo, &vhi, "value %.5g",
-                                       ImGuiSliderFlags_AlwaysClamp)) {
-                    w.valueRange = {std::min(v[0], v[1]), std::max(v[0], v[1])};
-                    changed = true;
-                }
-                if (ImGui::IsItemHovered()) ImGui::SetTooltip("value range");
-                ImGui::SameLine();
-                ImGui::SetNextItemWidth(half);
-                double g[2] = {w.gradientRange.x, w.gradientRange.y};
-                const double gLo = 0.0;
-                if (ImGui::DragScalarN("##gradient", ImGuiDataType_Double, g, 2, float(gmax / 1000.0), &gLo, &gmax,
-                                       "gradient %.4g", ImGuiSliderFlags_AlwaysClamp)) {
-                    w.gradientRange = {std::min(g[0], g[1]), std::max(g[0], g[1])};
-                    changed = true;
-                }
-                if (ImGui::IsItemHovered()) ImGui::SetTooltip("gradient magnitude range");
-            }
-            if (erase) {
-                widgets.erase(widgets.begin() + *selected);
-                *selected = -1;
-                changed = true;
-            }
-            ImGui::PopID();
-        } else {
-            ImGui::TextDisabled("double-click: add   drag: move, resize   right-click: delete   wheel: zoom");
-        }
+        f.room = int(widgets.size()) < kMaxTf2dWidgets;
+        changed |= widgetControls(f);
     }
-
     ImGui::PopID();
     return changed;
 }

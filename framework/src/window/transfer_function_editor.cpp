@@ -214,6 +214,196 @@ void pointTooltip(const char* title, const ControlPoint& p) {
     ImGui::EndTooltip();
 }
 
+// One frame of the editor: what its parts below share.
+struct Frame1D {
+    std::vector<ControlPoint>& points;  // edited here; the function is rebuilt from them
+    int* selected;
+    EditorState& state;
+    const Plot& plot;
+    const TransferFunctionEditorOptions& options;
+    ImVec2 mouse;
+    int hit;  // the point under the mouse, or -1
+    bool hovered, active;
+    double lo, hi;
+};
+
+// A new point at the mouse, coloured like the function there, held for moving.
+void addPointAtMouse(Frame1D& f, const TransferFunction& tf) {
+    ControlPoint p;
+    p.value = snapValue(f.plot.valueAt(f.mouse.x), f.plot, f.options.valueSnap);
+    p.alpha = float(std::clamp(f.plot.alphaAt(f.mouse.y), 0.0, 1.0));
+    p.color = f.points.empty() ? glm::vec3(1.0f) : glm::clamp(glm::vec3(tf.evaluate(p.value)), 0.0f, 1.0f);
+    const auto at = std::upper_bound(f.points.begin(), f.points.end(), p.value,
+                                     [](double v, const ControlPoint& q) { return v < q.value; });
+    const int index = int(at - f.points.begin());
+    f.points.insert(at, p);
+    *f.selected = index;
+    f.state.drag = {index, ImVec2(0, 0), f.mouse};
+}
+
+// The left button: a click selects a point and starts its drag, or adds
+// one; moving the mouse drags.
+bool leftButton(Frame1D& f, const TransferFunction& tf) {
+    Drag& drag = f.state.drag;
+    bool changed = false;
+    if (f.hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+        f.state.clickStamp = ++clickClock();
+        if (f.hit >= 0) {
+            *f.selected = f.hit;
+            const ImVec2 at = f.plot.handle(f.points[std::size_t(f.hit)]);
+            drag = {f.hit, ImVec2(f.mouse.x - at.x, f.mouse.y - at.y), f.mouse};
+        } else if (f.points.size() < kMaxTransferFunctionPoints) {  // one more would not construct
+            addPointAtMouse(f, tf);
+            changed = true;
+        }
+    } else if (f.active && drag.point >= 0 && ImGui::IsMouseDown(ImGuiMouseButton_Left) &&
+               (f.mouse.x != drag.lastMouse.x || f.mouse.y != drag.lastMouse.y)) {
+        ControlPoint& p = f.points[std::size_t(drag.point)];
+        const ImVec2 target(f.mouse.x - drag.grabOffset.x, f.mouse.y - drag.grabOffset.y);
+        const double value = snapValue(f.plot.valueAt(target.x), f.plot, f.options.valueSnap);
+        const float alpha = float(std::clamp(f.plot.alphaAt(target.y), 0.0, 1.0));
+        if (value != p.value || alpha != p.alpha) {
+            p.value = value, p.alpha = alpha;
+            drag.point = *f.selected = resort(f.points, drag.point);
+            changed = true;
+        }
+        drag.lastMouse = f.mouse;
+    }
+    if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) drag.point = -1;
+    return changed;
+}
+
+// Removal: a right click on a handle, or Delete for the selected point
+// (never below two points).
+bool removal(Frame1D& f) {
+    int remove = -1;
+    if (f.hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && f.hit >= 0 && f.state.drag.point < 0) {
+        remove = f.hit;
+        f.state.clickStamp = ++clickClock();
+    }
+    if (remove < 0 && *f.selected >= 0 && f.state.drag.point < 0 && f.state.clickStamp == clickClock() &&
+        deletePressed())
+        remove = *f.selected;
+    if (remove < 0 || f.points.size() <= 2) return false;
+    f.points.erase(f.points.begin() + remove);
+    if (*f.selected == remove) *f.selected = -1;
+    else if (*f.selected > remove) --*f.selected;
+    return true;
+}
+
+// The frame, grid, histogram, coloured area and curve, the opacity axis's
+// top and the handles (the selected on top).
+void drawPlot(const Frame1D& f, const EditorFrame& frame) {
+    const Plot& plot = f.plot;
+    const float rounding = ImGui::GetStyle().FrameRounding;
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->AddRectFilled(frame.origin, frame.max, styleColour(ImGuiCol_FrameBg), rounding);
+    draw->PushClipRect(plot.min, plot.max, true);
+    drawGrid(draw, plot);
+    if (f.options.histogram) drawHistogram(draw, plot, *f.options.histogram, f.options.logHistogram);
+    drawCurve(draw, plot, f.points);
+    if (f.hovered && f.state.drag.point < 0 && f.hit < 0)
+        draw->AddLine(ImVec2(f.mouse.x, plot.min.y), ImVec2(f.mouse.x, plot.max.y), styleColour(ImGuiCol_Text, 0.3f));
+    draw->PopClipRect();
+    // The opacity at the top: "1", or the zoomed axis's top, highlighted.
+    const std::string top = "opacity " + formatValue(plot.top);
+    drawLabel(draw, ImVec2(plot.min.x + 3.0f, plot.min.y + 1.0f), top.c_str(),
+              f.state.zoom > 1.0f ? highlightColour() : styleColour(ImGuiCol_TextDisabled));
+    draw->PushClipRect(frame.origin, frame.max, true);
+    for (int i = 0; i < int(f.points.size()); ++i)
+        if (i != *f.selected)
+            drawHandle(draw, plot.handle(f.points[i]), colour(f.points[i].color, 1.0f), false, i == f.hit);
+    if (*f.selected >= 0) {
+        const ControlPoint& p = f.points[std::size_t(*f.selected)];
+        drawHandle(draw, plot.handle(p), colour(p.color, 1.0f), true, *f.selected == f.hit);
+    }
+    draw->PopClipRect();
+    draw->AddRect(frame.origin, frame.max, styleColour(ImGuiCol_Border), rounding);
+}
+
+// The dragged or hovered point, else the position under the mouse.
+void hoverTooltip(const Frame1D& f) {
+    if (f.state.drag.point >= 0 && f.active) {
+        pointTooltip(nullptr, f.points[std::size_t(f.state.drag.point)]);
+    } else if (f.hovered && f.hit >= 0) {
+        char title[48];
+        std::snprintf(title, sizeof title, "point %d of %d", f.hit + 1, int(f.points.size()));
+        pointTooltip(title, f.points[std::size_t(f.hit)]);
+    } else if (f.hovered) {
+        const double value = std::clamp(f.plot.valueAt(f.mouse.x), f.lo, f.hi);
+        const double alpha = std::clamp(f.plot.alphaAt(f.mouse.y), 0.0, f.plot.top);
+        ImGui::BeginTooltip();
+        ImGui::Text("value    %s", formatValue(value).c_str());
+        ImGui::Text("opacity  %.3f", alpha);
+        if (!f.points.empty()) {
+            const TransferFunction current(f.points);
+            ImGui::TextDisabled("function opacity %.3f", current.evaluate(value).a);
+        }
+        if (f.options.histogram)
+            ImGui::TextDisabled("voxels   %llu", (unsigned long long)histogramCountAt(f.options.histogram, value));
+        ImGui::EndTooltip();
+    }
+}
+
+// The colour strip and the range's ends, with the label between them.
+void colourStripAndAxis(const Frame1D& f, const EditorFrame& frame, const char* label) {
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    const float stripHeight = 10.0f;
+    drawColourStrip(draw, f.plot, f.points, ImGui::GetCursorScreenPos().y, stripHeight, *f.selected);
+    ImGui::Dummy(ImVec2(frame.width, stripHeight + 3.0f));
+    const float y = ImGui::GetCursorScreenPos().y;
+    const std::string loText = formatValue(f.lo), hiText = formatValue(f.hi), title = visibleLabel(label);
+    const ImU32 text = styleColour(ImGuiCol_TextDisabled);
+    draw->AddText(ImVec2(f.plot.min.x, y), text, loText.c_str());
+    draw->AddText(ImVec2(f.plot.max.x - ImGui::CalcTextSize(hiText.c_str()).x, y), text, hiText.c_str());
+    if (!title.empty())
+        draw->AddText(ImVec2(frame.origin.x + (frame.width - ImGui::CalcTextSize(title.c_str()).x) * 0.5f, y),
+                      styleColour(ImGuiCol_Text), title.c_str());
+    ImGui::Dummy(ImVec2(frame.width, ImGui::GetTextLineHeight()));
+}
+
+// The selected point's colour, value, opacity and delete button.
+bool selectedPointControls(Frame1D& f) {
+    const ImGuiStyle& style = ImGui::GetStyle();
+    ImGui::PushID("##point");
+    bool changed = false;
+    ControlPoint& p = f.points[std::size_t(*f.selected)];
+    float rgb[3] = {p.color.r, p.color.g, p.color.b};
+    if (ImGui::ColorEdit3("##colour", rgb, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel))
+        p.color = glm::clamp(glm::vec3(rgb[0], rgb[1], rgb[2]), 0.0f, 1.0f), changed = true;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("colour of point %d (click for a picker)", *f.selected + 1);
+    ImGui::SameLine();
+    const float deleteWidth = ImGui::CalcTextSize("delete").x + 2.0f * style.FramePadding.x;
+    const float fields = ImGui::GetContentRegionAvail().x - deleteWidth - 2.0f * style.ItemSpacing.x;
+    ImGui::SetNextItemWidth(fields * 0.5f);
+    double value = p.value;
+    const double speed = (f.hi - f.lo) / 1000.0;
+    if (ImGui::DragScalar("##value", ImGuiDataType_Double, &value, float(speed), &f.lo, &f.hi, "value %.6g",
+                          ImGuiSliderFlags_AlwaysClamp) &&
+        value != p.value) {
+        p.value = snapValue(value, f.plot, f.options.valueSnap);
+        *f.selected = resort(f.points, *f.selected);
+        changed = true;
+    }
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(fields * 0.5f);
+    ControlPoint& q = f.points[std::size_t(*f.selected)];  // (resort may have moved it)
+    float alpha = q.alpha;
+    if (ImGui::SliderFloat("##opacity", &alpha, 0.0f, 1.0f, "opacity %.3f", ImGuiSliderFlags_AlwaysClamp) &&
+        alpha != q.alpha)
+        q.alpha = std::clamp(alpha, 0.0f, 1.0f), changed = true;
+    ImGui::SameLine();
+    ImGui::BeginDisabled(f.points.size() <= 2);
+    if (ImGui::Button("delete")) {
+        f.points.erase(f.points.begin() + *f.selected);
+        *f.selected = -1;
+        changed = true;
+    }
+    ImGui::EndDisabled();
+    ImGui::PopID();
+    return changed;
+}
+
 }  // namespace
 
 bool TransferFunctionEditor(const char* label, TransferFunction* tf, const TransferFunctionEditorOptions& options,
@@ -223,185 +413,28 @@ bool TransferFunctionEditor(const char* label, TransferFunction* tf, const Trans
     if (!selected) selected = ImGui::GetStateStorage()->GetIntRef(ImGui::GetID("##selected"), -1);
     std::vector<ControlPoint> points = tf->points();
     if (*selected >= int(points.size()) || *selected < -1) *selected = -1;
-    bool changed = false;
 
-    const ImGuiIO& io = ImGui::GetIO();
-    const ImGuiStyle& style = ImGui::GetStyle();
     double lo = options.range.x, hi = options.range.y;
     if (!(std::isfinite(lo) && std::isfinite(hi))) lo = 0.0, hi = 1.0;
     if (!(hi > lo)) hi = lo + 1.0;
     EditorState& state = persistentState<EditorState>(id);
-
     const EditorFrame frame = editorFrame(options.height, &state.zoom, kMaxZoom);
-    const ImVec2 origin = frame.origin, frameMax = frame.max;
-    const float width = frame.width;
-    const bool hovered = frame.hovered, active = frame.active;
     const Plot plot{frame.plotMin(), frame.plotMax(), lo, hi, 1.0 / double(state.zoom)};
-    const ImVec2 mouse = io.MousePos;
-    Drag& drag = state.drag;
-    if (drag.point >= int(points.size())) drag.point = -1;
-    const int hit = hovered ? handleAt(points, plot, mouse) : -1;
+    const ImVec2 mouse = ImGui::GetIO().MousePos;
+    if (state.drag.point >= int(points.size())) state.drag.point = -1;
+    const int hit = frame.hovered ? handleAt(points, plot, mouse) : -1;
+    Frame1D f{points, selected, state, plot, options, mouse, hit, frame.hovered, frame.active, lo, hi};
 
-    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
-        state.clickStamp = ++clickClock();
-        if (hit >= 0) {
-            *selected = hit;
-            const ImVec2 at = plot.handle(points[hit]);
-            drag = {hit, ImVec2(mouse.x - at.x, mouse.y - at.y), mouse};
-        } else if (points.size() < kMaxTransferFunctionPoints) {  // one more would not construct
-            // A new point where the mouse is, coloured like the function there.
-            ControlPoint p;
-            p.value = snapValue(plot.valueAt(mouse.x), plot, options.valueSnap);
-            p.alpha = float(std::clamp(plot.alphaAt(mouse.y), 0.0, 1.0));
-            p.color = points.empty() ? glm::vec3(1.0f) : glm::clamp(glm::vec3(tf->evaluate(p.value)), 0.0f, 1.0f);
-            const auto at = std::upper_bound(points.begin(), points.end(), p.value,
-                                             [](double v, const ControlPoint& q) { return v < q.value; });
-            const int index = int(at - points.begin());
-            points.insert(at, p);
-            *selected = index;
-            drag = {index, ImVec2(0, 0), mouse};
-            changed = true;
-        }
-    } else if (active && drag.point >= 0 && ImGui::IsMouseDown(ImGuiMouseButton_Left) &&
-               (mouse.x != drag.lastMouse.x || mouse.y != drag.lastMouse.y)) {
-        ControlPoint& p = points[std::size_t(drag.point)];
-        const ImVec2 target(mouse.x - drag.grabOffset.x, mouse.y - drag.grabOffset.y);
-        const double value = snapValue(plot.valueAt(target.x), plot, options.valueSnap);
-        const float alpha = float(std::clamp(plot.alphaAt(target.y), 0.0, 1.0));
-        if (value != p.value || alpha != p.alpha) {
-            p.value = value, p.alpha = alpha;
-            drag.point = *selected = resort(points, drag.point);
-            changed = true;
-        }
-        drag.lastMouse = mouse;
-    }
-    if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) drag.point = -1;
-
-    // Removal: right click on a handle, or Delete for the selected point.
-    int remove = -1;
-    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && hit >= 0 && drag.point < 0) {
-        remove = hit;
-        state.clickStamp = ++clickClock();
-    }
-    if (remove < 0 && *selected >= 0 && drag.point < 0 && state.clickStamp == clickClock() && deletePressed())
-        remove = *selected;
-    if (remove >= 0 && points.size() > 2) {
-        points.erase(points.begin() + remove);
-        if (*selected == remove) *selected = -1;
-        else if (*selected > remove) --*selected;
-        changed = true;
-    }
-
-    // Drawing: frame, grid, histogram, coloured area and curve, handles.
-    ImDrawList* draw = ImGui::GetWindowDrawList();
-    draw->AddRectFilled(origin, frameMax, styleColour(ImGuiCol_FrameBg), style.FrameRounding);
-    draw->PushClipRect(plot.min, plot.max, true);
-    drawGrid(draw, plot);
-    if (options.histogram) drawHistogram(draw, plot, *options.histogram, options.logHistogram);
-    drawCurve(draw, plot, points);
-    if (hovered && drag.point < 0 && hit < 0)
-        draw->AddLine(ImVec2(mouse.x, plot.min.y), ImVec2(mouse.x, plot.max.y), styleColour(ImGuiCol_Text, 0.3f));
-    draw->PopClipRect();
-    {
-        // The opacity at the top: "1", or the zoomed axis's top, highlighted.
-        const std::string top = "opacity " + formatValue(plot.top);
-        drawLabel(draw, ImVec2(plot.min.x + 3.0f, plot.min.y + 1.0f), top.c_str(),
-                  state.zoom > 1.0f ? highlightColour() : styleColour(ImGuiCol_TextDisabled));
-    }
-    draw->PushClipRect(origin, frameMax, true);
-    for (int i = 0; i < int(points.size()); ++i)
-        if (i != *selected) drawHandle(draw, plot.handle(points[i]), colour(points[i].color, 1.0f), false, i == hit);
-    if (*selected >= 0) {
-        const ControlPoint& p = points[std::size_t(*selected)];
-        drawHandle(draw, plot.handle(p), colour(p.color, 1.0f), true, *selected == hit);
-    }
-    draw->PopClipRect();
-    draw->AddRect(origin, frameMax, styleColour(ImGuiCol_Border), style.FrameRounding);
-
-    // Tooltips: the dragged or hovered point, else the position under the mouse.
-    if (drag.point >= 0 && active) {
-        pointTooltip(nullptr, points[std::size_t(drag.point)]);
-    } else if (hovered && hit >= 0) {
-        char title[48];
-        std::snprintf(title, sizeof title, "point %d of %d", hit + 1, int(points.size()));
-        pointTooltip(title, points[std::size_t(hit)]);
-    } else if (hovered) {
-        const double value = std::clamp(plot.valueAt(mouse.x), lo, hi);
-        const double alpha = std::clamp(plot.alphaAt(mouse.y), 0.0, plot.top);
-        ImGui::BeginTooltip();
-        ImGui::Text("value    %s", formatValue(value).c_str());
-        ImGui::Text("opacity  %.3f", alpha);
-        if (!points.empty()) {
-            const TransferFunction current(points);
-            ImGui::TextDisabled("function opacity %.3f", current.evaluate(value).a);
-        }
-        if (options.histogram)
-            ImGui::TextDisabled("voxels   %llu", (unsigned long long)histogramCountAt(options.histogram, value));
-        ImGui::EndTooltip();
-    }
-
-    // Colour strip and the range's ends, with the label between them.
-    const float stripHeight = 10.0f;
-    const float stripTop = ImGui::GetCursorScreenPos().y;
-    drawColourStrip(draw, plot, points, stripTop, stripHeight, *selected);
-    ImGui::Dummy(ImVec2(width, stripHeight + 3.0f));
-    {
-        const float y = ImGui::GetCursorScreenPos().y;
-        const std::string loText = formatValue(lo), hiText = formatValue(hi), title = visibleLabel(label);
-        const ImU32 text = styleColour(ImGuiCol_TextDisabled);
-        draw->AddText(ImVec2(plot.min.x, y), text, loText.c_str());
-        draw->AddText(ImVec2(plot.max.x - ImGui::CalcTextSize(hiText.c_str()).x, y), text, hiText.c_str());
-        if (!title.empty())
-            draw->AddText(ImVec2(origin.x + (width - ImGui::CalcTextSize(title.c_str()).x) * 0.5f, y),
-                          styleColour(ImGuiCol_Text), title.c_str());
-        ImGui::Dummy(ImVec2(width, ImGui::GetTextLineHeight()));
-    }
-
-    // The selected point: colour, value, opacity, delete.
+    bool changed = leftButton(f, *tf);
+    changed |= removal(f);
+    drawPlot(f, frame);
+    hoverTooltip(f);
+    colourStripAndAxis(f, frame, label);
     if (options.showPointControls) {
-        if (*selected >= 0) {
-            ImGui::PushID("##point");
-            ControlPoint& p = points[std::size_t(*selected)];
-            float rgb[3] = {p.color.r, p.color.g, p.color.b};
-            if (ImGui::ColorEdit3("##colour", rgb, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel)) {
-                p.color = glm::clamp(glm::vec3(rgb[0], rgb[1], rgb[2]), 0.0f, 1.0f);
-                changed = true;
-            }
-            if (ImGui::IsItemHovered()) ImGui::SetTooltip("colour of point %d (click for a picker)", *selected + 1);
-            ImGui::SameLine();
-            const float deleteWidth = ImGui::CalcTextSize("delete").x + 2.0f * style.FramePadding.x;
-            const float fields = ImGui::GetContentRegionAvail().x - deleteWidth - 2.0f * style.ItemSpacing.x;
-            ImGui::SetNextItemWidth(fields * 0.5f);
-            double value = p.value;
-            const double speed = (hi - lo) / 1000.0;
-            if (ImGui::DragScalar("##value", ImGuiDataType_Double, &value, float(speed), &lo, &hi, "value %.6g",
-                                  ImGuiSliderFlags_AlwaysClamp) &&
-                value != p.value) {
-                p.value = snapValue(value, plot, options.valueSnap);
-                *selected = resort(points, *selected);
-                changed = true;
-            }
-            ImGui::SameLine();
-            ImGui::SetNextItemWidth(fields * 0.5f);
-            ControlPoint& q = points[std::size_t(*selected)];
-            float alpha = q.alpha;
-            if (ImGui::SliderFloat("##opacity", &alpha, 0.0f, 1.0f, "opacity %.3f", ImGuiSliderFlags_AlwaysClamp) &&
-                alpha != q.alpha) {
-                q.alpha = std::clamp(alpha, 0.0f, 1.0f);
-                changed = true;
-            }
-            ImGui::SameLine();
-            ImGui::BeginDisabled(points.size() <= 2);
-            if (ImGui::Button("delete")) {
-                points.erase(points.begin() + *selected);
-                *selected = -1;
-                changed = true;
-            }
-            ImGui::EndDisabled();
-            ImGui::PopID();
-        } else {
+        if (*selected >= 0)
+            changed |= selectedPointControls(f);
+        else
             ImGui::TextDisabled("click: add   drag: move   right-click: delete   wheel: zoom opacity");
-        }
     }
 
     if (changed) *tf = TransferFunction(std::move(points));

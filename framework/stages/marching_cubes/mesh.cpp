@@ -133,7 +133,7 @@ const std::array<CaseTriangles, 256>& marchingCubesTable() {
 TriangleMesh extractIsosurface(const Volume& volume, double isovalue, std::size_t maxTriangles) {
     volume.requireInMemory("marching cubes");
     const auto& table = marchingCubesTable();
-    const StageBatches& batch = stageBatches();
+    const CppStageBatches& batch = stageBatches();
     const glm::ivec3 d = volume.dims();
     const glm::dvec3 spacing = volume.spacing();
     TriangleMesh mesh;
@@ -141,8 +141,10 @@ TriangleMesh extractIsosurface(const Volume& volume, double isovalue, std::size_
     const auto centre = [&](glm::ivec3 ijk) { return (glm::dvec3(ijk) + 0.5) * spacing; };
     const std::size_t cubes = std::size_t(std::max(d.x - 1, 0)) * std::size_t(std::max(d.y - 1, 0));
     std::vector<double> values(cubes * 8);
+    std::vector<decltype(batch.cubeCase)::Call> caseCalls(cubes);
+    for (std::size_t cube = 0; cube < cubes; ++cube) caseCalls[cube] = {&values[8 * cube], isovalue};
     std::vector<int> cases(cubes);
-    std::vector<EdgeCrossingCall> crossings;
+    std::vector<decltype(batch.edgeCrossing)::Call> crossings;
     std::vector<glm::dvec3> points;
     for (int k = 0; k + 1 < d.z; ++k) {
         double* v = values.data();
@@ -152,7 +154,7 @@ TriangleMesh extractIsosurface(const Volume& volume, double isovalue, std::size_
                     const glm::ivec3 p = glm::ivec3(i, j, k) + cubeCorner(c);
                     *v = volume.value(p.x, p.y, p.z);
                 }
-        batch.cubeCases(values.data(), cubes, isovalue, cases.data());
+        batch.cubeCase.run(caseCalls.data(), cubes, cases.data());
         const std::uint32_t firstNew = std::uint32_t(mesh.vertices.size());
         crossings.clear();
         std::size_t cube = 0;
@@ -172,7 +174,7 @@ TriangleMesh extractIsosurface(const Volume& volume, double isovalue, std::size_
                         const auto [it, fresh] = vertexOfEdge.try_emplace(
                             edgeKey(a, e / 4, d), firstNew + std::uint32_t(crossings.size()));
                         if (fresh)  // the edge's lower corner (a) first, always
-                            crossings.push_back({centre(a), centre(b), corner[ca], corner[cb]});
+                            crossings.emplace_back(centre(a), centre(b), corner[ca], corner[cb], isovalue);
                         out[std::size_t(n)] = it->second;
                     }
                     mesh.triangles.push_back(out);
@@ -182,7 +184,7 @@ TriangleMesh extractIsosurface(const Volume& volume, double isovalue, std::size_
                 }
             }
         points.resize(crossings.size());
-        batch.edgeCrossings(crossings.data(), crossings.size(), isovalue, points.data());
+        batch.edgeCrossing.run(crossings.data(), crossings.size(), points.data());
         for (const glm::dvec3& p : points) mesh.vertices.push_back(glm::vec3(p));
     }
     return mesh;

@@ -43,6 +43,10 @@ struct MeshRenderer::Cached {
     std::vector<glm::vec3> triangles, edges;  // 3 and 2 world positions each
 };
 
+// The parameters the C++ side reads (the rest reach the shader as uniforms).
+constexpr const char* kIsovalue = "isovalue";
+constexpr const char* kWireframe = "wireframe";
+
 std::string MeshRenderer::id() const { return "mesh"; }
 
 std::string MeshRenderer::description() const {
@@ -51,7 +55,7 @@ std::string MeshRenderer::description() const {
 
 std::vector<ParameterSpec> MeshRenderer::parameters() const {
     using T = ParameterType;
-    ParameterSpec isovalue{"isovalue", T::Float, 0.0, 1.0, 0.5, "the surface's value (data units; default: mid-range)"};
+    ParameterSpec isovalue{kIsovalue, T::Float, 0.0, 1.0, 0.5, "the surface's value (data units; default: mid-range)"};
     isovalue.dataUnits = true;
     std::vector<ParameterSpec> p = {
         isovalue,
@@ -60,7 +64,7 @@ std::vector<ParameterSpec> MeshRenderer::parameters() const {
         {"color_b", T::Float, 0, 1, 0.75, "surface colour, blue"},
         {"depth", T::Bool, 0, 1, 0, "show the surface's depth (near white, far black), as iso does"},
         {"flat", T::Bool, 0, 1, 0, "shade each triangle by its own normal: the facets marching cubes made"},
-        {"wireframe", T::Bool, 0, 1, 0, "draw the triangles' edges over the surface"},
+        {kWireframe, T::Bool, 0, 1, 0, "draw the triangles' edges over the surface"},
     };
     for (ParameterSpec& s : shadingParameters(true)) p.push_back(s);
     return p;
@@ -91,11 +95,11 @@ std::shared_ptr<const MeshRenderer::Cached> MeshRenderer::meshFor(const Volume& 
 }
 
 void MeshRenderer::draw(DrawContext& ctx, const ParameterValues& values) const {
-    const std::shared_ptr<const Cached> mesh = meshFor(ctx.volume(), values.at("isovalue"));
+    const std::shared_ptr<const Cached> mesh = meshFor(ctx.volume(), values.at(kIsovalue));
     ctx.enableDepthTest();
     ctx.program().set("u_mesh_lines", 0);
     ctx.drawFacets(mesh->triangles);
-    if (values.at("wireframe") != 0.0) {
+    if (values.at(kWireframe) != 0.0) {
         ctx.program().set("u_mesh_lines", 1);
         ctx.drawLines(mesh->edges);
     }

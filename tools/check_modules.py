@@ -67,6 +67,7 @@ HEADERS = {
     "renderers": "renderers",
     "window": "window",
     "function_check_info": "checks",
+    "sanitizer": "io",
     "stage_registry": "stages",  # framework/stages/stage_registry.cpp
 }
 

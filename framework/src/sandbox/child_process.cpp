@@ -45,6 +45,7 @@
 #include "syscall_filter.h"
 #include "voxlab/error.h"
 #include "voxlab/project_root.h"
+#include "voxlab/sanitizer.h"
 
 namespace voxlab {
 
@@ -59,19 +60,8 @@ void setLimit(int resource, std::size_t value) {
     setrlimit(resource, &r);
 }
 
-// Address sanitizer reserves terabytes of address space for its shadow
-// memory, so an RLIMIT_AS cap would stop every sanitized child at start.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAddressSpaceCapWorks = false;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAddressSpaceCapWorks = false;
-#else
-constexpr bool kAddressSpaceCapWorks = true;
-#endif
-#else
-constexpr bool kAddressSpaceCapWorks = true;
-#endif
+// An RLIMIT_AS cap would stop every sanitized child at start (sanitizer.h).
+constexpr bool kAddressSpaceCapWorks = !kAddressSanitized;
 
 // Writes a decimal number (async-signal-safe).
 void writeNumber(int fd, long value) {

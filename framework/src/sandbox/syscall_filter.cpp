@@ -14,6 +14,8 @@
 #include <cstdlib>
 #include <initializer_list>
 
+#include "voxlab/sanitizer.h"
+
 namespace voxlab::sandbox {
 
 namespace {
@@ -81,17 +83,7 @@ constexpr unsigned long kNamespaceFlags = CLONE_NEWNS | CLONE_NEWCGROUP | CLONE_
 
 // Sanitizer runtimes stop the world with ptrace at exit (LeakSanitizer);
 // the tests' sanitized builds need it, a release build never allows it.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
+constexpr bool kSanitized = kAddressSanitized;
 
 std::string build(scmp_filter_ctx ctx, std::string* error) {
     auto fail = [&](const std::string& what, int rc) {

@@ -52,6 +52,7 @@
 
 #include "dicom_internal.h"
 #include "voxlab/fd_io.h"
+#include "voxlab/sanitizer.h"
 #include "volume_io_util.h"
 
 namespace voxlab {
@@ -69,17 +70,7 @@ struct Progress {
 
 Progress* g_progress = nullptr;  // set in the child only
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAddressSpaceCapWorks = false;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAddressSpaceCapWorks = false;
-#else
-constexpr bool kAddressSpaceCapWorks = true;
-#endif
-#else
-constexpr bool kAddressSpaceCapWorks = true;
-#endif
+constexpr bool kAddressSpaceCapWorks = !kAddressSanitized;  // (sanitizer.h)
 
 // Room for the C++ runtime, GDCM's dictionaries and small buffers.
 constexpr std::uint64_t kMemorySlack = std::uint64_t(256) << 20;

@@ -72,7 +72,7 @@ def read_uchar_nrrd(path):
 
 
 def orbit_basis(azimuth, elevation):
-    """voxlab's orbit camera (framework/src/render/camera.cpp): forward and image-down."""
+    """voxlab's orbit camera (framework/src/volume/camera.cpp): forward and image-down."""
     az, el = math.radians(azimuth), math.radians(elevation)
     forward = (math.sin(az) * math.cos(el), math.sin(el), math.cos(az) * math.cos(el))
     up = (math.sin(az) * math.sin(el), -math.cos(el), math.cos(az) * math.sin(el))

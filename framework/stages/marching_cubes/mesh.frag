@@ -1,6 +1,6 @@
 #version 330 core
 // Renderer "mesh": one fragment of the isosurface's triangle mesh, made on
-// the CPU by marching cubes (framework/src/mesh/marching_cubes.cpp, with
+// the CPU by marching cubes (framework/stages/marching_cubes/mesh.cpp, with
 // the marching_cubes stage's cubeCase and edgeCrossing) and drawn with a
 // depth test. Shaded as iso shades its hits (the gradient at the point, the
 // shading stage), or by the triangle's own normal with `flat` (the facets

@@ -202,7 +202,7 @@ double creditForFailedCases(double failedFraction);
 // The verdict on one scene's image, as every report gives it: "status"
 // (passed or failed), "metrics" and the one-line "message"; *credit gets the
 // scene's credit in [0, 1]. The grader and the browser's self-check
-// (web/self_check.cpp) both say it this way.
+// (framework/src/grade/self_check.cpp) both say it this way.
 nlohmann::json sceneVerdict(const ImageMetrics& m, const Tolerance& tolerance, double* credit);
 
 nlohmann::json toJson(const ImageMetrics& m);

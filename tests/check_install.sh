@@ -11,11 +11,16 @@
 # In each, one header of the copy is then poisoned with an #error: the C++
 # stage must now fail to build, naming it, which shows that the stage was
 # compiled against the copy's headers and not the original checkout's.
+# With --deb instead (CTest `deb_package`, heavy: packing takes minutes):
+# 3. The .deb (cpack -G DEB): its control names the libraries voxlab links
+#    and what grading C++ needs; unpacked (dpkg-deb -x, not installed into
+#    the machine) its voxlab renders and grades the C++ stage at full marks.
 #
-# usage: check_install.sh PROJECT_DIR BUILD_DIR
+# usage: check_install.sh PROJECT_DIR BUILD_DIR [--deb]
 set -euo pipefail
 project=$1
 build=$2
+deb=${3:-}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 unset VOXLAB_ROOT VOXLAB_DATA_PATH VOXLAB_EXPECTED_CACHE
@@ -60,6 +65,28 @@ poisoned_fails() {  # poisoned_fails WHAT HEADER ROOT_BIN SUBMISSION NAME
         fail "$1: the stage was not compiled against the copy's headers ($(tail -2 "$work/elsewhere/$5/log.txt"))"
     echo "ok    $1: a poisoned header in the copy stops the C++ stage's build, naming the copy's header"
 }
+
+# 3. The .deb, unpacked.
+if [ "$deb" = --deb ]; then
+    (cd "$build" && cpack -G DEB -B "$work/deb" > "$work/cpack.log" 2>&1) || fail "cpack: $(tail -3 "$work/cpack.log")"
+    package=$(ls "$work"/deb/voxlab_*.deb)
+    control=$(dpkg-deb -f "$package" Package Section Depends)
+    for want in "Package: voxlab" "Section: education" g++ libglm-dev nlohmann-json3-dev libosmesa6 libegl1 \
+                libglfw3 libgdcm3.0 libseccomp2 libarchive13 libstb0 zlib1g; do
+        grep -qF -- "$want" <<< "$control" || fail "the .deb's control lacks $want: $control"
+    done
+    echo "ok    the .deb's control: $(grep Depends <<< "$control" | cut -c1-110)..."
+    dpkg-deb -x "$package" "$work/unpacked"
+    prefix="$work/unpacked/usr"
+    mkdir -p "$work/elsewhere/deb-render"
+    (cd "$work/elsewhere/deb-render" &&
+     "$prefix/bin/voxlab" render --dataset bucky.nrrd --renderer mip --size 64x64 --out bucky.png > log.txt 2>&1) ||
+        fail "the .deb's voxlab does not render: $(tail -2 "$work/elsewhere/deb-render/log.txt")"
+    [ -s "$work/elsewhere/deb-render/bucky.png" ] || fail "the .deb's voxlab wrote no image"
+    echo "ok    the .deb's voxlab, unpacked, renders bucky.nrrd by name from another folder"
+    full_marks "the .deb" "$(grade "$prefix" deb "$prefix/share/voxlab/reference")" deb
+    exit 0
+fi
 
 # 1. Installed, then the prefix moved.
 cmake --install "$build" --prefix "$work/installed" > "$work/install.log" ||

@@ -46,6 +46,16 @@ void answering(Serve serve) {
     }
 }
 
+// Calls `f` on `call`'s arguments and appends its result to `out`; throws
+// what the stage throws, and an Error naming a result too large to send.
+template <class R, class... A>
+void appendResult(std::string& out, R (*f)(A...), const char* name, const Call<A...>& call) {
+    const R result = call.apply(f);
+    if (const std::string why = Answer<R>::tooLarge(result); !why.empty())
+        throw Error(std::string(name) + " returned " + why);
+    Answer<R>::put(out, result);
+}
+
 // Serves one call of `f` (the library's, or null where it defines none):
 // reads its arguments, calls it and answers with its result (the
 // protocol: stage_host_protocol.h).
@@ -55,10 +65,9 @@ void serveCall(R (*f)(A...), const char* name) {
     if (!call.read(0)) _exit(0);
     answering([&] {
         if (!f) throw NotImplemented(name);
-        const R result = call.apply(f);
-        if (const std::string why = Answer<R>::tooLarge(result); !why.empty())
-            throw Error(std::string(name) + " returned " + why);
-        if (!Answer<R>::write(kAnswers, result)) _exit(3);
+        std::string out = "O";
+        appendResult(out, f, name, call);
+        if (!sendAll(kAnswers, out.data(), out.size())) _exit(3);
     });
 }
 
@@ -78,10 +87,7 @@ void serveBatch(R (*f)(A...), const char* name) {
         Call<A...> call;
         for (std::uint32_t i = 0; i < count; ++i) {
             call.load(wire.data() + std::size_t(i) * Call<A...>::kWireSize);
-            const R result = call.apply(f);
-            if (const std::string why = Answer<R>::tooLarge(result); !why.empty())
-                throw Error(std::string(name) + " returned " + why);
-            Answer<R>::put(out, result);
+            appendResult(out, f, name, call);
         }
         if (!sendAll(kAnswers, out.data(), out.size())) _exit(3);
     });

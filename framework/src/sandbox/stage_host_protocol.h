@@ -62,7 +62,6 @@ struct Arg {  // by value or by const reference
     static constexpr std::size_t kWireSize = sizeof(Value);
     Value value{};
     static void put(std::string& out, const Value& v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); }
-    bool read(int fd) { return readAll(fd, &value, sizeof value); }
     void load(const char* wire) { std::memcpy(&value, wire, sizeof value); }
     const Value& get() const { return value; }
 };
@@ -73,7 +72,6 @@ struct Arg<const T*> {
     static constexpr std::size_t kWireSize = sizeof(T) * kPointedValues;
     T values[kPointedValues]{};
     static void put(std::string& out, const T* p) { out.append(reinterpret_cast<const char*>(p), sizeof values); }
-    bool read(int fd) { return readAll(fd, values, sizeof values); }
     void load(const char* wire) { std::memcpy(values, wire, sizeof values); }
     const T* get() const { return values; }
 };
@@ -82,7 +80,6 @@ template <class R>
 struct Answer {
     static_assert(std::is_trivially_copyable_v<R>, "a stage function's result must be trivially copyable or a vector");
     static void put(std::string& out, const R& r) { out.append(reinterpret_cast<const char*>(&r), sizeof r); }
-    static bool write(int fd, const R& r) { return sendAll(fd, "O", 1) && sendAll(fd, &r, sizeof r); }
     static bool read(int fd, R* r) { return readAll(fd, r, sizeof *r); }
     static bool readMany(int fd, R* r, std::size_t count) { return readAll(fd, r, count * sizeof *r); }
     static std::string tooLarge(const R&) { return ""; }
@@ -100,11 +97,6 @@ struct Answer<std::vector<T>> {
         const std::uint32_t count = std::uint32_t(r.size());
         out.append(reinterpret_cast<const char*>(&count), 4);
         out.append(reinterpret_cast<const char*>(r.data()), count * sizeof(T));
-    }
-    static bool write(int fd, const std::vector<T>& r) {
-        std::string out = "O";
-        put(out, r);
-        return sendAll(fd, out.data(), out.size());
     }
     static bool read(int fd, std::vector<T>* r) {
         std::uint32_t count = 0;

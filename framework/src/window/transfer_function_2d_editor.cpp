@@ -421,8 +421,8 @@ struct Frame2D {
     ImVec2 mouse;
     Hit hit;            // what the mouse is over (none while dragging)
     bool hovered, active;
-    bool room;          // fewer than kMaxTf2dWidgets widgets
     double vlo, vhi, gmax;
+    bool room() const { return int(widgets.size()) < kMaxTf2dWidgets; }  // for one more widget
 };
 
 void addWidget(Frame2D& f, const Tf2dWidget& w) {
@@ -447,7 +447,7 @@ bool leftButton(Frame2D& f) {
                         at = h.position, handleGradient = h.gradient;
             drag = {f.hit, ImVec2(f.mouse.x - at.x, f.mouse.y - at.y), f.mouse, f.mouse,
                     f.widgets[std::size_t(f.hit.widget)], handleGradient};
-        } else if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && f.room) {
+        } else if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && f.room()) {
             addWidget(f, newTriangle(f.plot.valueAt(f.mouse.x), f.plot, f.widgets.size()));
             drag = {{*f.selected, Grip::Move, -1}, ImVec2(0, 0), f.mouse, f.mouse, f.widgets.back(), 0.0};
             changed = true;
@@ -489,7 +489,7 @@ bool rightButtonAndDelete(Frame2D& f) {
     }
     if (ImGui::BeginPopup("##add")) {
         ImGui::TextDisabled("at value %s", formatValue(f.state.popupAt.x).c_str());
-        ImGui::BeginDisabled(!f.room);
+        ImGui::BeginDisabled(!f.room());
         if (ImGui::MenuItem("add a triangle here"))
             addWidget(f, newTriangle(f.state.popupAt.x, f.plot, f.widgets.size())), changed = true;
         if (ImGui::MenuItem("add a box here"))
@@ -639,7 +639,7 @@ bool selectedWidgetControls(Frame2D& f) {
 // The buttons that add widgets, and the selected widget's fields.
 bool widgetControls(Frame2D& f) {
     bool changed = false;
-    ImGui::BeginDisabled(!f.room);
+    ImGui::BeginDisabled(!f.room());
     if (ImGui::Button("+ triangle"))
         addWidget(f, newTriangle(0.5 * (f.vlo + f.vhi), f.plot, f.widgets.size())), changed = true;
     ImGui::SameLine();
@@ -675,20 +675,14 @@ bool TransferFunction2DEditor(const char* label, TransferFunction2D* tf, const H
     const ImVec2 mouse = ImGui::GetIO().MousePos;
     if (state.drag.hit.widget >= int(widgets.size())) state.drag.hit = {};
     const Hit hit = frame.hovered && state.drag.hit.widget < 0 ? hitTest(widgets, plot, mouse, *selected) : Hit{};
-    Frame2D f{widgets, selected, state, plot, mouse, hit, frame.hovered, frame.active,
-              int(widgets.size()) < kMaxTf2dWidgets, vlo, vhi, gmax};
+    Frame2D f{widgets, selected, state, plot, mouse, hit, frame.hovered, frame.active, vlo, vhi, gmax};
 
     bool changed = leftButton(f);
-    f.room = int(widgets.size()) < kMaxTf2dWidgets;
     changed |= rightButtonAndDelete(f);
-    f.room = int(widgets.size()) < kMaxTf2dWidgets;
     drawPlot(f, frame, histogram, options.logHistogram);
     hoverTooltip(f, histogram, *tf);
     valueAxis(f, frame, label);
-    if (options.showWidgetControls) {
-        f.room = int(widgets.size()) < kMaxTf2dWidgets;
-        changed |= widgetControls(f);
-    }
+    if (options.showWidgetControls) changed |= widgetControls(f);
     ImGui::PopID();
     return changed;
 }

@@ -3,11 +3,16 @@
 // the trip through toJson, and reports errors naming the key.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <set>
+
 #include <nlohmann/json.hpp>
 
 #include "support/error_of.h"
 #include "voxlab/error.h"
+#include "voxlab/project_root.h"
 #include "voxlab/scene.h"
+#include "voxlab/scene_section.h"
 
 namespace voxlab::testing {
 namespace {
@@ -115,6 +120,29 @@ TEST(SceneSections, TooManyWidgetsAreRefused) {
     const json scene = {{"dataset", "phantom:a"}, {"tf2d", {{"widgets", widgets}}}};
     const std::string msg = errorOf([&] { Scene::fromJson(scene, "scene.json", ""); });
     EXPECT_NE(msg.find("at most 16"), std::string::npos) << msg;
+}
+
+// The sections are the stages': each stage folder with a section.cpp (the
+// oracle: the folders themselves) brings at least one, every section owns a
+// key no other section and no key of the scene's own owns, its documentation
+// is written as a scene writes it, and a scene without it writes nothing of it.
+TEST(SceneSections, TheStagesSectionsAreFoundDocumentedAndWrittenOnlyWhenThere) {
+    std::size_t folders = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(stagesRoot()))
+        folders += std::filesystem::is_regular_file(entry.path() / "section.cpp");
+    const std::vector<SceneSection>& sections = stageSceneSections();
+    EXPECT_GE(folders, 2u);  // the cutting plane's and the 2D transfer function's, at least
+    EXPECT_GE(sections.size(), folders);
+    const json plain = parse(R"({"dataset": "phantom:sphere:16"})").toJson();
+    std::set<std::string> keys;
+    for (const SceneSection& section : sections) {
+        const std::string key = section.key;
+        EXPECT_TRUE(keys.insert(key).second) << key << " is owned twice";
+        EXPECT_FALSE(plain.contains(key)) << key << " is written by a scene without it";
+        EXPECT_EQ(std::string(section.doc).rfind("\"" + key + "\": ", 0), 0u) << section.doc;
+    }
+    for (const char* own : {"dataset", "renderer", "camera", "sampling", "parameters", "transfer_function", "roi"})
+        EXPECT_FALSE(keys.count(own)) << own;
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // #include search path must pick the implementation root first.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -123,6 +124,33 @@ TEST(ShaderLibrary, StageFolderNamesReachOnlyTheFrameworksShaders) {
             << name;
     EXPECT_NE(errorOf([&] { lib.resolve("stages/../shaders/voxlab/ray.glsl"); }).find("without '..'"),
               std::string::npos);
+    fs::remove_all(root);
+}
+
+// "stages/*/FILE" reads every stage folder's FILE (the oracle: the folders
+// themselves), and nothing when no folder has one. That is how ray.glsl gets the cutting plane's half-space tests
+// without naming the stage: the student's cutting_plane.glsl is in every
+// ray shader, here mip's.
+TEST(ShaderLibrary, AStageSegmentIsReadFromEveryStageFolderThatHasOne) {
+    std::vector<std::string> expected;
+    for (const auto& entry : fs::directory_iterator(stagesRoot()))
+        if (fs::is_regular_file(entry.path() / "ray_segment.glsl")) expected.push_back((entry.path() / "ray_segment.glsl").string());
+    std::sort(expected.begin(), expected.end());
+    ASSERT_FALSE(expected.empty());
+    const fs::path root = makeImplementation("cutting_plane", "cutting_plane.glsl",
+                                             "bool clip_to_half_space(inout Ray r, vec3 p, vec3 n) { return true; }\n"
+                                             "bool in_half_space(vec3 q, vec3 p, vec3 n) { return true; } // PLANTED\n");
+    const ShaderLibrary lib = ShaderLibrary::forImplementation(root.string());
+    std::vector<std::string> found = lib.resolveAll("stages/*/ray_segment.glsl");
+    std::sort(found.begin(), found.end());
+    EXPECT_EQ(found, expected);
+    EXPECT_TRUE(lib.resolveAll("stages/*/no_such_segment.glsl").empty());
+    EXPECT_EQ(lib.resolveAll("voxlab/ray.glsl"), std::vector<std::string>{lib.resolve("voxlab/ray.glsl")});
+    EXPECT_NE(errorOf([&] { lib.resolveAll("stages/*/../../shaders/voxlab/ray.glsl"); }).find("without '..'"),
+              std::string::npos);
+    EXPECT_NE(errorOf([&] { lib.resolveAll("stages/*/renderer.cpp"); }).find("not a .glsl, .frag or .vert file"),
+              std::string::npos);
+    EXPECT_NE(lib.preprocess("stages/mip/mip.frag").text.find("PLANTED"), std::string::npos);
     fs::remove_all(root);
 }
 

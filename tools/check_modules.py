@@ -68,6 +68,7 @@ HEADERS = {
     "window": "window",
     "function_check_info": "checks",
     "sanitizer": "io",
+    "scene_section": "scene",  # src/scene/scene_sections.cpp
     "stage_registry": "stages",  # framework/stages/stage_registry.cpp
 }
 
@@ -87,6 +88,8 @@ def module_of_source(project, path):
             return None  # a test: the whole framework
         if parts[-1] == "command.cpp":
             return "cli"  # a command a stage brings is built into the program
+        if parts[-1] == "section.cpp":
+            return "scene"  # a scene section a stage brings is read with the scene
         return "contracts" if parts[3:5] == ["include", "voxlab"] else "stages"
     return None
 

@@ -82,7 +82,9 @@ bool clip_ray(inout Ray ray, vec3 lo, vec3 hi) {
     return ray.t_exit > ray.t_entry;
 }
 
-#include "cutting_plane/cutting_plane.glsl"
+// The stages' segments: the half-space tests below (clip_to_half_space,
+// in_half_space) are a stage's, the one whose segment includes them.
+#include "stages/*/ray_segment.glsl"
 
 // Clips the ray to the region this renderer samples: the region of interest
 // (which lies inside the volume's box), the clip planes' half-spaces and the

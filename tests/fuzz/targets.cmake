@@ -28,6 +28,7 @@ set(VOXLAB_FUZZ_FRAMEWORK_SOURCES
   src/volume/dicom_child.cpp
   src/volume/phantoms.cpp
   src/scene/scene.cpp
+  src/scene/scene_sections.cpp  # with the stages' section.cpp (tests/fuzz/CMakeLists.txt)
   src/scene/json_text.cpp
   src/scene/data_path.cpp
   src/io/project_root.cpp

@@ -13,16 +13,7 @@
 //     "parameters": {"offset": 0},           // the renderer's own, see `voxlab list`
 //     "transfer_function": [ {"value": 40, "color": [1,1,1], "alpha": 0}, ... ],
 //                                            // or a path to such a JSON file
-//     "tf2d": {"widgets": [...]},            // 2D transfer function (value and gradient),
-//                                            // or a path; see transfer_function_2d.h
 //     "roi": {"min": [0, 0, 10], "max": [256, 256, 90]},   // cropping box, voxel coordinates
-//     "cutting_plane": {                     // splits the view in two half-spaces
-//       "point": [128, 128, 64],             // voxel coordinates (default: the centre)
-//       "normal": [1, 0, 0],                 // world direction; this scene's renderer
-//                                            // draws the side it points into
-//       "other_side": {"renderer": "mip",    // or "none": the other side is invisible
-//                      "transfer_function": "tf/bonsai.json", "parameters": {}}
-//     },
 //     "labels": {                            // a label map on the dataset's grid (tagged
 //       "volume": "tooth_labels.nrrd",       // volume rendering), see LabelMap below
 //       "sampling": "nearest",               // or "masks"
@@ -32,6 +23,11 @@
 //     "fusion": {"dataset": "pet.nrrd", "mode": "sum", ...},  // a second volume, see Fusion
 //     "clip_planes": [{"point": [64, 64, 64], "normal": [0, 0, 1]}]   // up to 6
 //   }
+//
+// Stages bring more sections, each read and written by its stage
+// (framework/stages/STAGE/section.cpp, voxlab/scene_section.h), such as the
+// cutting plane's and the 2D transfer function's; `voxlab list --sections`
+// prints them as a scene writes them.
 //
 // Every key is optional except "dataset". Unknown keys and wrong types are
 // errors that name the key: "scene.json: sampling.step: expected a number".

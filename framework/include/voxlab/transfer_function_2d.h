@@ -46,10 +46,12 @@ namespace voxlab {
 // At most this many widgets (the shader keeps them in uniform arrays).
 constexpr int kMaxTf2dWidgets = 16;
 
-// The 2D transfer function's short name, spelled here only: the scene's
-// section, the --NAME option, the viewer script's command and panel, and
-// the presets' folder of a dataset folder (datasets/NAME/).
-inline constexpr const char* kTransferFunction2DName = "tf2d";
+// The 2D transfer function's short name: the scene's section, the --NAME
+// option, the viewer script's command and panel, and the presets' folder of
+// a dataset folder (datasets/NAME/). It is its stage's name, spelled once in
+// that stage's section.cpp (framework/stages/*/section.cpp), which brings
+// the scene section.
+extern const char* const kTransferFunction2DName;
 
 struct Tf2dWidget {
     enum class Kind { Triangle, Box };

@@ -12,7 +12,8 @@
 //   step X                         sampling step (voxels), > 0
 //   interpolation nearest|trilinear|hardware|bspline|catmull-rom
 //   tf PATH|none                   a transfer-function file, or none
-//   tf2d PATH|none                 a 2D transfer-function file, or none
+//   TF2D PATH|none                 a 2D transfer-function file, or none (TF2D: the 2D
+//                                  transfer function's name, kTransferFunction2DName)
 //   camera SETTING VALUE...        settings: azimuth A, elevation E, distance D,
 //                                  fov F, zoom Z, pan X Y, view +x|-x|+y|-y|+z|-z,
 //                                  projection perspective|orthographic
@@ -29,7 +30,7 @@
 //   divider X                      the split's divider at X (0..1) of the window's width
 //   right RENDERER|same            the right side's technique (default: the same as the left)
 //   implementation DIR|reference|student   what the left side (or the only view) runs
-//   panel slices|tf|tf2d|profile|help|controls on|off
+//   panel slices|tf|TF2D|profile|help|controls on|off   (viewerPanels(), below)
 //   enlarge axial|coronal|sagittal|off   the slices panel with one view enlarged (off: all three)
 //   click X Y                      a left click at window pixel (X, Y)
 //   drag-plane N DX DY             press on clip plane N's handle (1-based; it must be

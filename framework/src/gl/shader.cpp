@@ -175,7 +175,8 @@ struct Preprocessor {
                 continue;
             }
             if (parseInclude(line, &name)) {
-                addFile(lib.resolve(name, displayPath(path) + ":" + std::to_string(lineNo)), false);
+                for (const std::string& file : lib.resolveAll(name, displayPath(path) + ":" + std::to_string(lineNo)))
+                    addFile(file, false);
                 out.text += lineDirective(fileId, lineNo + 1);
             } else if (parseIntUniform(line, &name) && constants.count(name)) {
                 // Baked: same line count, so error lines still map.
@@ -417,6 +418,26 @@ std::string ShaderLibrary::resolve(const std::string& name, const std::string& i
     std::string searched;
     for (std::size_t i = 0; i < folders; ++i) searched += (searched.empty() ? "" : ", ") + displayPath(searchPath_[i]);
     throw ShaderError(where + "shader '" + name + "' not found (searched: " + searched + ")");
+}
+
+std::vector<std::string> ShaderLibrary::resolveAll(const std::string& name, const std::string& includedFrom) const {
+    const std::string every = kStagesPrefix + "*/";
+    if (name.rfind(every, 0) != 0) return {resolve(name, includedFrom)};
+    checkIncludeName(name, includedFrom.empty() ? "" : includedFrom + ": ");
+    // The stages from the build's list, not from listing the folder: a
+    // grading worker may read the stages' shader files but not list their
+    // folders (stage_job.cpp), and the list keeps the teaching order.
+    static const char* const stages[] = {
+#define VOXLAB_STAGE(stage) #stage,
+#include "voxlab_stage_names.inc"
+#undef VOXLAB_STAGE
+    };
+    const std::string file = name.substr(every.size());
+    std::vector<std::string> found;
+    for (const char* stage : stages)
+        if (isFile(stagesRoot() + "/" + stage + "/" + file))
+            found.push_back(resolve(kStagesPrefix + stage + "/" + file, includedFrom));
+    return found;
 }
 
 PreprocessedShader ShaderLibrary::preprocess(const std::string& name, const ShaderConstants& given) const {

@@ -2,6 +2,7 @@
 // and the key path ("scene.json: camera.azimut: unknown key").
 #include "voxlab/scene.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -14,6 +15,7 @@
 
 #include "json_text.h"
 #include "voxlab/error.h"
+#include "voxlab/scene_section.h"
 
 namespace voxlab {
 
@@ -58,68 +60,81 @@ const LabelClass* LabelMap::find(int label) const {
     return nullptr;
 }
 
-namespace {
-
-// The cutting plane's section of a scene, spelled here only.
-const std::string kCut = "cutting_plane";
-
 using json = nlohmann::json;
 
-// Reads one scene; `where` is the file name used in every message.
-class Parser {
+void SceneReader::fail(const std::string& key, const std::string& message) const {
+    throw Error((where_.empty() ? "" : where_ + ": ") + key + ": " + message);
+}
+
+void SceneReader::onlyKeys(const json& obj, const std::string& path,
+                           std::initializer_list<const char*> allowed) const {
+    for (const auto& item : obj.items()) {
+        bool ok = false;
+        for (const char* a : allowed) ok = ok || item.key() == a;
+        if (!ok) fail(path.empty() ? item.key() : path + "." + item.key(), "unknown key");
+    }
+}
+
+double SceneReader::number(const json& j, const std::string& key) const {
+    if (!j.is_number() || !std::isfinite(j.get<double>())) fail(key, "expected a number");
+    return j.get<double>();
+}
+
+std::string SceneReader::string(const json& j, const std::string& key) const {
+    if (!j.is_string()) fail(key, "expected a string");
+    return j.get<std::string>();
+}
+
+glm::dvec3 SceneReader::vec3(const json& j, const std::string& key) const {
+    if (!j.is_array() || j.size() != 3) fail(key, "expected [x, y, z]");
+    return {number(j[0], key + "[0]"), number(j[1], key + "[1]"), number(j[2], key + "[2]")};
+}
+
+ParameterValues SceneReader::parameters(const json& params, const std::string& key) const {
+    if (!params.is_object()) fail(key, "expected an object {\"name\": value}");
+    ParameterValues out;
+    for (const auto& item : params.items()) {
+        if (item.value().is_boolean()) out[item.key()] = item.value().get<bool>() ? 1.0 : 0.0;
+        else if (item.value().is_number() && std::isfinite(item.value().get<double>()))
+            out[item.key()] = item.value().get<double>();
+        else fail(key + "." + item.key(), "expected a number or true/false");
+    }
+    return out;
+}
+
+TransferFunction SceneReader::transferFunction(const json& tf, const std::string& key) const {
+    if (!tf.is_string()) return TransferFunction::fromJson(tf, where_, key);
+    const std::string name = tf.get<std::string>();
+    return located(key, [&] { return TransferFunction::load(resolveDataPath(name, baseDir_)); });
+}
+
+std::string SceneReader::dataPath(const json& j, const std::string& key) const {
+    const std::string name = string(j, key);
+    return located(key, [&] { return resolveDataPath(name, baseDir_); });
+}
+
+namespace {
+
+// Reads one scene; `where` is the file name used in every message. The
+// sections that stages bring are read by theirs (voxlab/scene_section.h).
+class Parser : public SceneReader {
 public:
-    Parser(std::string where, std::string baseDir)
-        : where_(std::move(where)), baseDir_(std::move(baseDir)) {}
+    using SceneReader::SceneReader;
 
     Scene parse(const json& j) const;
 
 private:
-    [[noreturn]] void fail(const std::string& key, const std::string& msg) const {
-        throw Error((where_.empty() ? "" : where_ + ": ") + key + ": " + msg);
-    }
-    void onlyKeys(const json& obj, const std::string& path,
-                  std::initializer_list<const char*> allowed) const {
-        for (const auto& item : obj.items()) {
-            bool ok = false;
-            for (const char* a : allowed) ok = ok || item.key() == a;
-            if (!ok) fail(path.empty() ? item.key() : path + "." + item.key(), "unknown key");
-        }
-    }
-    double number(const json& j, const std::string& key) const {
-        if (!j.is_number() || !std::isfinite(j.get<double>())) fail(key, "expected a number");
-        return j.get<double>();
-    }
-    std::string string(const json& j, const std::string& key) const {
-        if (!j.is_string()) fail(key, "expected a string");
-        return j.get<std::string>();
-    }
-    // Runs f, adding this scene's location to any voxlab::Error it throws.
-    template <class F>
-    auto located(const std::string& key, F f) const {
-        try {
-            return f();
-        } catch (const Error& e) {
-            fail(key, e.what());
-        }
-    }
-
+    void topLevelKeys(const json& j) const;
     void camera(const json& j, CameraSpec* cam) const;
-    glm::dvec3 vec3(const json& j, const std::string& key) const;
     glm::dvec2 window(const json& j, const std::string& key) const;
-    ParameterValues parameters(const json& j, const std::string& key) const;
-    TransferFunction transferFunction(const json& j, const std::string& key) const;
     RegionOfInterest roi(const json& j) const;
-    CuttingPlane cuttingPlane(const json& j) const;
     void sampling(const json& j, Scene* s) const;
-    std::string dataPath(const json& j, const std::string& key) const;
     int label(const json& j, const std::string& key) const;
     LabelClass labelClass(const json& j, const std::string& key) const;
     LabelDistance labelDistance(const json& j) const;
     LabelMap labels(const json& j) const;
     Fusion fusion(const json& j) const;
     std::vector<ClipPlane> clipPlanes(const json& j) const;
-
-    std::string where_, baseDir_;
 };
 
 void Parser::camera(const json& j, CameraSpec* cam) const {
@@ -166,29 +181,6 @@ glm::dvec2 Parser::window(const json& w, const std::string& key) const {
     return lohi;
 }
 
-glm::dvec3 Parser::vec3(const json& j, const std::string& key) const {
-    if (!j.is_array() || j.size() != 3) fail(key, "expected [x, y, z]");
-    return {number(j[0], key + "[0]"), number(j[1], key + "[1]"), number(j[2], key + "[2]")};
-}
-
-ParameterValues Parser::parameters(const json& params, const std::string& key) const {
-    if (!params.is_object()) fail(key, "expected an object {\"name\": value}");
-    ParameterValues out;
-    for (const auto& item : params.items()) {
-        if (item.value().is_boolean()) out[item.key()] = item.value().get<bool>() ? 1.0 : 0.0;
-        else if (item.value().is_number() && std::isfinite(item.value().get<double>()))
-            out[item.key()] = item.value().get<double>();
-        else fail(key + "." + item.key(), "expected a number or true/false");
-    }
-    return out;
-}
-
-TransferFunction Parser::transferFunction(const json& tf, const std::string& key) const {
-    if (!tf.is_string()) return TransferFunction::fromJson(tf, where_, key);
-    const std::string name = tf.get<std::string>();
-    return located(key, [&] { return TransferFunction::load(resolveDataPath(name, baseDir_)); });
-}
-
 RegionOfInterest Parser::roi(const json& j) const {
     if (!j.is_object()) fail("roi", "expected an object {\"min\": [x,y,z], \"max\": [x,y,z]}");
     onlyKeys(j, "roi", {"min", "max"});
@@ -197,26 +189,6 @@ RegionOfInterest Parser::roi(const json& j) const {
     for (int k = 0; k < 3; ++k)
         if (!(r.max[k] > r.min[k])) fail("roi", "max must be greater than min on every axis");
     return r;
-}
-
-CuttingPlane Parser::cuttingPlane(const json& j) const {
-    if (!j.is_object()) fail(kCut, "expected an object {\"point\", \"normal\", \"other_side\"}");
-    onlyKeys(j, kCut, {"point", "normal", "other_side"});
-    CuttingPlane c;
-    if (j.contains("point")) c.point = vec3(j["point"], kCut + ".point");
-    if (j.contains("normal")) c.normal = vec3(j["normal"], kCut + ".normal");
-    if (glm::length(c.normal) <= 0.0) fail(kCut + ".normal", "must not be zero");
-    if (j.contains("other_side")) {
-        const json& o = j["other_side"];
-        const std::string key = kCut + ".other_side";
-        if (!o.is_object()) fail(key, "expected an object {\"renderer\", \"transfer_function\", \"parameters\"}");
-        onlyKeys(o, key, {"renderer", "transfer_function", "parameters"});
-        if (o.contains("renderer")) c.otherRenderer = string(o["renderer"], key + ".renderer");
-        if (o.contains("transfer_function"))
-            c.otherTransferFunction = transferFunction(o["transfer_function"], key + ".transfer_function");
-        if (o.contains("parameters")) c.otherParameters = parameters(o["parameters"], key + ".parameters");
-    }
-    return c;
 }
 
 void Parser::sampling(const json& sampling, Scene* s) const {
@@ -236,11 +208,6 @@ void Parser::sampling(const json& sampling, Scene* s) const {
         if (!sampling["skip_empty_space"].is_boolean()) fail("sampling.skip_empty_space", "expected true or false");
         s->skipEmptySpace = sampling["skip_empty_space"].get<bool>();
     }
-}
-
-std::string Parser::dataPath(const json& j, const std::string& key) const {
-    const std::string name = string(j, key);
-    return located(key, [&] { return resolveDataPath(name, baseDir_); });
 }
 
 int Parser::label(const json& j, const std::string& key) const {
@@ -360,16 +327,25 @@ std::vector<ClipPlane> Parser::clipPlanes(const json& j) const {
     return planes;
 }
 
+void Parser::topLevelKeys(const json& j) const {
+    if (!j.is_object()) throw Error((where().empty() ? "" : where() + ": ") + "expected a JSON object");
+    static const char* const own[] = {"dataset", "renderer", "camera", "projection", "size", "sampling", "window",
+                                      "background", "parameters", "transfer_function", "roi", "labels",
+                                      "fusion", "clip_planes", "gpu_memory"};
+    for (const auto& item : j.items()) {
+        bool known = std::find(std::begin(own), std::end(own), item.key()) != std::end(own);
+        for (const SceneSection& section : stageSceneSections()) known = known || item.key() == section.key;
+        if (!known) fail(item.key(), "unknown key");
+    }
+}
+
 Scene Parser::parse(const json& j) const {
-    if (!j.is_object()) throw Error((where_.empty() ? "" : where_ + ": ") + "expected a JSON object");
-    onlyKeys(j, "", {"dataset", "renderer", "camera", "projection", "size", "sampling", "window",
-                     "background", "parameters", "transfer_function", kTransferFunction2DName, "roi", kCut.c_str(), "labels",
-                     "fusion", "clip_planes", "gpu_memory"});
+    topLevelKeys(j);
     Scene s;
 
     if (!j.contains("dataset")) fail("dataset", "missing (required)");
     const std::string dataset = string(j["dataset"], "dataset");
-    s.dataset = located("dataset", [&] { return resolveDataPath(dataset, baseDir_); });
+    s.dataset = located("dataset", [&] { return resolveDataPath(dataset, baseDir()); });
 
     if (j.contains("renderer")) {
         s.renderer = string(j["renderer"], "renderer");
@@ -419,21 +395,12 @@ Scene Parser::parse(const json& j) const {
 
     if (j.contains("parameters")) s.parameters = parameters(j["parameters"], "parameters");
     if (j.contains("transfer_function")) s.transferFunction = transferFunction(j["transfer_function"], "transfer_function");
-    if (j.contains(kTransferFunction2DName)) {
-        const json& t = j[kTransferFunction2DName];
-        if (t.is_string()) {
-            const std::string name = t.get<std::string>();
-            s.transferFunction2D =
-                located(kTransferFunction2DName, [&] { return TransferFunction2D::load(resolveDataPath(name, baseDir_)); });
-        } else {
-            s.transferFunction2D = TransferFunction2D::fromJson(t, where_, kTransferFunction2DName);
-        }
-    }
     if (j.contains("roi")) s.roi = roi(j["roi"]);
-    if (j.contains(kCut)) s.cuttingPlane = cuttingPlane(j[kCut]);
     if (j.contains("labels")) s.labels = labels(j["labels"]);
     if (j.contains("fusion")) s.fusion = fusion(j["fusion"]);
     if (j.contains("clip_planes")) s.clipPlanes = clipPlanes(j["clip_planes"]);
+    for (const SceneSection& section : stageSceneSections())
+        if (j.contains(section.key)) section.read(*this, j[section.key], s);
     return s;
 }
 
@@ -499,24 +466,14 @@ json Scene::toJson() const {
     j["parameters"] = json::object();
     for (const auto& [name, value] : parameters) j["parameters"][name] = value;
     if (transferFunction) j["transfer_function"] = transferFunction->toJson();
-    if (transferFunction2D) j[kTransferFunction2DName] = transferFunction2D->toJson();
     if (roi) j["roi"] = {{"min", {roi->min.x, roi->min.y, roi->min.z}}, {"max", {roi->max.x, roi->max.y, roi->max.z}}};
-    if (cuttingPlane) {
-        const CuttingPlane& c = *cuttingPlane;
-        json cut = {{"normal", {c.normal.x, c.normal.y, c.normal.z}}};
-        if (c.point) cut["point"] = {c.point->x, c.point->y, c.point->z};
-        json other = {{"renderer", c.otherRenderer}, {"parameters", json::object()}};
-        for (const auto& [name, value] : c.otherParameters) other["parameters"][name] = value;
-        if (c.otherTransferFunction) other["transfer_function"] = c.otherTransferFunction->toJson();
-        cut["other_side"] = other;
-        j[kCut] = cut;
-    }
     if (labels) j["labels"] = labelsJson(*labels);
     if (fusion) j["fusion"] = fusionJson(*fusion);
     if (!clipPlanes.empty()) {
         j["clip_planes"] = json::array();
         for (const ClipPlane& p : clipPlanes) j["clip_planes"].push_back({{"point", vec3Json(p.point)}, {"normal", vec3Json(p.normal)}});
     }
+    for (const SceneSection& section : stageSceneSections()) section.write(*this, j);
     return j;
 }
 

@@ -245,7 +245,8 @@ private:
     const ViewerStep& step_;
 };
 
-constexpr const char* kCommands[] = {
+// (kTransferFunction2DName is a stage's, defined in another file: hence const, not constexpr)
+const char* const kCommands[] = {
     "load", "scene", "renderer", "param", "step", "interpolation", kTransferFunctionName, kTransferFunction2DName, "camera", "rotate",
     "key", "press", "rendering", "ui-scale", "slide", "enlarge", "window", "samples", "skipping", "lod", "split", "divider", "right", "drag", "drag-plane", "implementation", "panel", "click", "size", "wait", "screenshot", "quit"};
 

@@ -55,7 +55,7 @@ printf '#!/bin/sh\nexit 0\n' >"$tmp/build/bin/voxlab"
 chmod +x "$tmp/bin/"* "$tmp/build/bin/voxlab"
 
 grader="cmake make g++ pkg-config python3 libglm-dev libstb-dev libosmesa6-dev libegl-dev zlib1g-dev nlohmann-json3-dev khronos-api libgdcm-dev libseccomp-dev libarchive-dev"
-full="$grader libglfw3-dev libimgui-dev libgtest-dev xvfb xauth fonts-dejavu-core python3-pydicom glslang-tools dpkg-dev"
+full="$grader libglfw3-dev libimgui-dev libgtest-dev xvfb xauth fonts-dejavu-core python3-pydicom python3-numpy glslang-tools dpkg-dev"
 
 # run OS_RELEASE ARGS...: runs setup.sh with the stand-ins; sets out, err, rc, log.
 run() {

@@ -97,7 +97,7 @@ double stored(int i, int j, int k) { return i + 10 * j + 100 * k; }
 TEST_F(Dicom, PydicomIsInstalledForDebiansPython) {
     const CommandResult r = runShell(kPython + " -c 'import pydicom, numpy; print(pydicom.__version__)'");
     ASSERT_EQ(r.exitCode, 0) << "python3-pydicom is missing for " << kPython
-                             << " (apt-get install python3-pydicom): " << r.err;
+                             << " (apt-get install python3-pydicom python3-numpy): " << r.err;
 }
 
 // ---- voxels, order, spacing ---------------------------------------------------------

@@ -50,14 +50,15 @@ case "$system" in
   *) echo "setup: $system is untested (Debian 12 and Ubuntu 22.04 are); trying their package names" >&2 ;;
 esac
 # libgdcm-dev reads DICOM series (every mode loads volumes); libarchive-dev
-# unpacks students' zip uploads for the grader; python3-pydicom
-# writes the DICOM series the tests load (tests/dicom/make_series.py);
+# unpacks students' zip uploads for the grader; python3-pydicom (with
+# python3-numpy, which it only recommends and we install without
+# recommends) writes the DICOM series the tests load (tests/dicom/make_series.py);
 # glslang-tools checks every shader as GLSL ES 3.00 too (tests/test_glsl_es.cpp);
 # dpkg-dev lets cpack find the .deb's Depends (dpkg-shlibdeps; the test deb_package).
 packages=(cmake make g++ pkg-config python3 libglm-dev libstb-dev libosmesa6-dev libegl-dev zlib1g-dev
           nlohmann-json3-dev khronos-api libgdcm-dev libseccomp-dev libarchive-dev)
 [ "$mode" = --grader ] || packages+=(libglfw3-dev libimgui-dev libgtest-dev xvfb xauth fonts-dejavu-core
-                                     python3-pydicom glslang-tools dpkg-dev)
+                                     python3-pydicom python3-numpy glslang-tools dpkg-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

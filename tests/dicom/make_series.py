@@ -46,7 +46,7 @@ try:
     from pydicom.encaps import encapsulate
     from pydicom.uid import ExplicitVRLittleEndian, ImplicitVRLittleEndian, generate_uid
 except ImportError as e:  # a test must fail loudly, not skip
-    print(f"make_series.py: cannot import pydicom/numpy ({e}); install python3-pydicom "
+    print(f"make_series.py: cannot import pydicom/numpy ({e}); install python3-pydicom python3-numpy "
           f"and run with /usr/bin/python3", file=sys.stderr)
     sys.exit(3)
 

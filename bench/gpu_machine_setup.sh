@@ -10,7 +10,7 @@
 # - glvnd's packages are unpacked into / when the machine has no libEGL.so.1;
 # - GLM's headers go to /usr/include/glm when missing (C++ stages);
 # - the tree is linked at the path the binary was built in, when it sits
-#   elsewhere (a C++ stage's build names that path's framework/include).
+#   elsewhere (a C++ stage's build names that path's framework/include/MODULE).
 # Then it prints the EGL device voxlab finds.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)

@@ -3,7 +3,8 @@
 #   bin/voxlab, bin/voxlab-stage-host        the programs (the host beside voxlab)
 #   share/voxlab/shaders, datasets, ...      the project root voxlab finds from
 #                                            its own location (voxlab/project_root.h)
-#   share/voxlab/framework/include           the headers C++ stages compile against
+#   share/voxlab/framework/include           the headers C++ stages compile against,
+#                                            one folder per module (MODULE/voxlab/*.h)
 #   share/voxlab/framework/stages            the stages' own shaders and C++ contracts
 #                                            (STAGE/include/voxlab/*.h)
 #   share/voxlab/framework/stage_library     the exports every stage library links,
@@ -36,7 +37,7 @@ install(DIRECTORY framework/include DESTINATION ${VOXLAB_INSTALL_ROOT}/framework
 install(DIRECTORY framework/stages DESTINATION ${VOXLAB_INSTALL_ROOT}/framework
         FILES_MATCHING PATTERN "*.frag" PATTERN "*.vert" PATTERN "*.glsl" REGEX "/include/voxlab/[^/]*[.]h$")
 install(FILES ${PROJECT_BINARY_DIR}/framework/generated/voxlab/stage_contracts.h
-        DESTINATION ${VOXLAB_INSTALL_ROOT}/framework/include/voxlab)
+        DESTINATION ${VOXLAB_INSTALL_ROOT}/framework/include/mesh/voxlab)
 install(FILES framework/stage_library/stage_exports.cpp framework/stage_library/stage_prelude.h
         DESTINATION ${VOXLAB_INSTALL_ROOT}/framework/stage_library)
 install(FILES $<TARGET_OBJECTS:voxlab_stage_exports>

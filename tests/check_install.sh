@@ -93,7 +93,7 @@ cmake --install "$build" --prefix "$work/installed" > "$work/install.log" ||
     fail "cmake --install: $(tail -3 "$work/install.log")"
 share=share/voxlab
 for f in bin/voxlab bin/voxlab-stage-host $share/shaders/voxlab/ray.glsl $share/datasets/bucky.nrrd \
-         $share/framework/include/voxlab/error.h $share/framework/include/voxlab/stage_contracts.h \
+         $share/framework/include/io/voxlab/error.h $share/framework/include/mesh/voxlab/stage_contracts.h \
          $share/framework/stages/$stage/include/voxlab/slice_axis.h $share/framework/stage_library/stage_exports.o \
          $share/framework/stage_library/prelude/voxlab_stage_prelude.h.gch $share/reference/$stage/grading.json \
          $share/assignments/$stage/grading.json; do

@@ -1,4 +1,4 @@
-// Bricked rendering (framework/include/voxlab/volume_bricks.h,
+// Bricked rendering (framework/include/render/voxlab/volume_bricks.h,
 // shaders/voxlab/bricks.glsl), checked against independent oracles:
 //  - the plan: every voxel owned by exactly one brick, each texture its
 //    brick plus the apron clipped to the volume, within the texture limit

@@ -1,4 +1,4 @@
-// Empty-space skipping (framework/include/voxlab/empty_space.h,
+// Empty-space skipping (framework/include/render/voxlab/empty_space.h,
 // shaders/voxlab/empty_space.glsl), checked three ways:
 //  - the brick ranges against brute force over each brick and its apron,
 //    and the brick flags against values and gradients computed here, on

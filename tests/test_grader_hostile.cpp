@@ -26,6 +26,7 @@
 #include "voxlab/expected_cache.h"
 #include "voxlab/grader.h"
 #include "voxlab/image.h"
+#include "voxlab/stage_library.h"
 #include "support/expected_outputs.h"
 #include "support/run_command.h"
 #include "support/sandbox_probes.h"
@@ -399,8 +400,9 @@ TEST_F(HostileSubmissions, TheCompiledReferenceCannotBeEmbedded) {
         EXPECT_EQ(s["status"], "compile_error") << target << ": " << s["message"];
         EXPECT_NE(report_.find("incbin"), std::string::npos) << s["message"];
         // Outside the sandbox the same file builds (the test can fail).
-        const CommandResult built = runShell("g++ -std=c++17 -c -I" + (kSource / "framework/include").string() + " -I" +
-                                             (kSource / "framework/stages/texslice3d/include").string() + " " +
+        std::string includes;
+        for (const std::string& dir : stageIncludeDirs()) includes += " -I" + dir;
+        const CommandResult built = runShell("g++ -std=c++17 -c" + includes + " " +
                                              (sub / "texslice3d/proxy_geometry.cpp").string() + " -o /dev/null");
         EXPECT_EQ(built.exitCode, 0) << built.err;
     }

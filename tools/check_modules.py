@@ -7,8 +7,9 @@ module "cli"; the stage folders, framework/stages/, are the module
 declares each module and the modules it uses (DEPENDS); here, a module may
 use those and, through them, theirs.
 
-A header framework/include/voxlab/NAME.h belongs to the module whose folder
-holds NAME.cpp; a header with no such file is assigned below (HEADERS). A
+A header framework/include/MODULE/voxlab/NAME.h belongs to MODULE (the
+build gives each module's library that folder, so the compiler refuses an
+include from a module not among its dependencies; this check names it). A
 stage's C++ contract, framework/stages/STAGE/include/voxlab/NAME.h, belongs
 to "contracts" (the generated voxlab/stage_contracts.h that includes them
 all, to "mesh"). Tests (test_*.cpp) use the whole framework and are not
@@ -60,18 +61,6 @@ def closure(direct):
     return result
 
 
-# Headers without a .cpp of the same name.
-HEADERS = {
-    "error": "io",
-    "image": "image",
-    "renderers": "renderers",
-    "window": "window",
-    "function_check_info": "checks",
-    "sanitizer": "io",
-    "scene_section": "scene",  # src/scene/scene_sections.cpp
-    "stage_registry": "stages",  # framework/stages/stage_registry.cpp
-}
-
 # Violations left, each with its reason; remove an entry with its violation.
 KNOWN = {}
 
@@ -96,12 +85,12 @@ def module_of_source(project, path):
 
 def header_modules(project):
     found = {}
-    src = os.path.join(project, "framework", "src")
-    for module in sorted(os.listdir(src)):
-        for name in os.listdir(os.path.join(src, module)):
-            if name.endswith(".cpp"):
-                found.setdefault(name[:-4], module)
-    found.update(HEADERS)
+    include = os.path.join(project, "framework", "include")
+    for module in sorted(os.listdir(include)):
+        folder = os.path.join(include, module, "voxlab")
+        for name in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
+            if name.endswith(".h"):
+                found[name[:-2]] = module
     stages = os.path.join(project, "framework", "stages")
     for stage in sorted(os.listdir(stages)):
         contracts = os.path.join(stages, stage, "include", "voxlab")
@@ -114,7 +103,7 @@ def header_modules(project):
 
 
 def files(project):
-    for top in ("framework/src", "framework/cli", "framework/stages", "framework/include/voxlab"):
+    for top in ("framework/src", "framework/cli", "framework/stages", "framework/include"):
         for root, _, names in os.walk(os.path.join(project, top)):
             for n in sorted(names):
                 if n.endswith((".cpp", ".h")):
@@ -177,11 +166,7 @@ def include_problems(project, depends):
     for path in files(project):
         rel = os.path.relpath(path, project)
         if rel.startswith("framework/include/"):
-            base = os.path.splitext(os.path.basename(path))[0]
-            module = modules.get(base)
-            if module is None:
-                unknown.append(f"{rel}: no module (no {base}.cpp under framework/src/; add it to HEADERS)")
-                continue
+            module = rel.split("/")[2]
         else:
             module = module_of_source(project, path)
             if module is None:

@@ -8,7 +8,7 @@ to assignments/ path for path and replaces each such block with a loud stub:
   GLSL  not_implemented(); and a neutral return value: every pixel that used
         the stage shows a magenta-and-black checkerboard
         (shaders/voxlab/not_implemented.glsl);
-  C++   throw NotImplemented("function"); (framework/include/voxlab/error.h).
+  C++   throw NotImplemented("function"); (framework/include/io/voxlab/error.h).
 
 Blocks between `// BEGIN WORKED EXAMPLE` and `// END WORKED EXAMPLE` are
 kept (a worked example the handout walks through). Grading scenes marked "hidden" in a

@@ -1,7 +1,7 @@
 // Student starter code, generated from reference/splat/splat_order.cpp by tools/make_assignments.py.
 // Implement the functions marked TODO; everything else is given.
-// Stage: splatting, the walk. The contract is in framework/include/voxlab/
-// splatting.h: three nested loops over the voxels, back to front.
+// Stage: splatting, the walk. The contract is in
+// framework/stages/splat/include/voxlab/splatting.h: three nested loops over the voxels, back to front.
 //
 // Splats are laid "over" what is already drawn, so a voxel must be drawn
 // before any voxel in front of it. On a regular grid seen along d, walking

@@ -4,7 +4,7 @@
 //
 // Classify a sample by its value f and its gradient magnitude g (data units
 // per unit length, see gradients.h) with the scene's widgets
-// (framework/include/voxlab/transfer_function_2d.h has the formulas):
+// (framework/include/scene/voxlab/transfer_function_2d.h has the formulas):
 //  - triangle i (Levoy 1988): fv = u_tf2d_shape[i].x, radius r = shape.y,
 //    opacity av = u_tf2d_color[i].a:
 //        alpha = av                          if g == 0 and f == fv

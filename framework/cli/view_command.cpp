@@ -32,9 +32,9 @@ int viewCommand(int argc, char** argv) {
                                 "usage: voxlab view [DATASET|SCENE.json] [options]\n\n"
                                 "Opens the interactive viewer. With no argument it shows the default scene.\n"
                                 "In the window, H lists the keys. --script FILE drives it without a person (see\n"
-                                "framework/include/voxlab/viewer_script.h) and exits at the end of the script, or\n"
+                                "framework/include/scene/voxlab/viewer_script.h) and exits at the end of the script, or\n"
                                 "hands the window over with --keep-open. --deck FILE steps through a lecture's\n"
-                                "scenes with the arrow keys (the format: framework/include/voxlab/deck.h).\n\n",
+                                "scenes with the arrow keys (the format: framework/include/scene/voxlab/deck.h).\n\n",
                                 specs))
         return *status;
 #ifdef VOXLAB_HAVE_VIEWER

@@ -14,7 +14,7 @@
 //
 // Return the gradient per unit length, the smallest voxel spacing: multiply
 // the per-world-unit result by u_min_spacing. (On a volume of spacing 1 both
-// are the same.) framework/include/voxlab/gradients.h computes the same
+// are the same.) framework/include/volume/voxlab/gradients.h computes the same
 // estimators on the CPU, at the voxels.
 #ifndef VOXLAB_STAGE_GRADIENT_GLSL
 #define VOXLAB_STAGE_GRADIENT_GLSL

@@ -1,6 +1,6 @@
 // Stage: marching cubes (Lorensen and Cline 1987), the cube's case and the
-// vertex on an edge. The contract is in framework/include/voxlab/
-// marching_cubes.h; the framework walks the cubes, looks each case up in
+// vertex on an edge. The contract is in
+// framework/stages/marching_cubes/include/voxlab/marching_cubes.h; the framework walks the cubes, looks each case up in
 // its table (marchingCubesTable) and draws or saves the mesh.
 //
 // The cubes sit between voxel centres: the 8 corners of a cube are 8

@@ -1,5 +1,5 @@
-// Stage: splatting, the walk. The contract is in framework/include/voxlab/
-// splatting.h: three nested loops over the voxels, back to front.
+// Stage: splatting, the walk. The contract is in
+// framework/stages/splat/include/voxlab/splatting.h: three nested loops over the voxels, back to front.
 //
 // Splats are laid "over" what is already drawn, so a voxel must be drawn
 // before any voxel in front of it. On a regular grid seen along d, walking

@@ -1,5 +1,5 @@
 // voxlab GLSL library for the function checks' probes (see
-// framework/include/voxlab/glsl_probe.h): one case per pixel. A case's inputs
+// framework/include/checks/voxlab/glsl_probe.h): one case per pixel. A case's inputs
 // are texels of the RGBA32F textures u_probe_input[k]; its results go to
 // two RGBA32F targets, and a third records whether a stub was reached.
 #ifndef VOXLAB_PROBE_GLSL

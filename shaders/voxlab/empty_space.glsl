@@ -1,4 +1,4 @@
-// voxlab GLSL library: empty-space skipping (framework/include/voxlab/empty_space.h).
+// voxlab GLSL library: empty-space skipping (framework/include/render/voxlab/empty_space.h).
 //
 // The volume is cut into bricks; texel b of u_bricks holds, for brick b,
 // (smallest value, largest value, visible, 0): the range of every value a

@@ -1,7 +1,7 @@
 // voxlab GLSL library: the gradient of the volume at a point.
 //
 // gradient_at(p) returns grad f in data units per unit length (the smallest
-// voxel spacing; see framework/include/voxlab/gradients.h). Renderers that
+// voxel spacing; see framework/include/volume/voxlab/gradients.h). Renderers that
 // shade or use a 2D transfer function declare two parameters that choose
 // how it is obtained:
 //   sobel                  0: central differences (6 samples), 1: the

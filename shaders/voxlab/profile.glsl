@@ -1,5 +1,5 @@
 // voxlab GLSL library: the ray profile's instrumented run
-// (RenderEngine::profileRay, framework/include/voxlab/ray_profile.h).
+// (RenderEngine::profileRay, framework/include/render/voxlab/ray_profile.h).
 //
 // The profile shows what the stage's own code does along one pixel's ray.
 // The entry shader runs unchanged but for this: every fragment of a small

@@ -1,5 +1,5 @@
 // voxlab GLSL library: the scene's 2D transfer-function widgets, as the
-// engine uploads them (framework/include/voxlab/transfer_function_2d.h).
+// engine uploads them (framework/include/scene/voxlab/transfer_function_2d.h).
 //   u_tf2d_count     how many widgets there are; the engine bakes it into
 //                    the program as a constant, so a loop up to it unrolls
 //                    (much faster on llvmpipe); read it like any uniform

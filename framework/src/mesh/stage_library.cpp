@@ -156,10 +156,10 @@ std::string stagePreludeHeader() {
 
 namespace {
 
-// The folder of the generated voxlab/stage_contracts.h when framework/include
-// lacks it, or "".
+// The folder of the generated voxlab/stage_contracts.h when the mesh
+// module's headers lack it, or "".
 std::string stageContractsDir() {
-    if (regularFileExists(projectRoot() + "/framework/include/voxlab/stage_contracts.h")) return "";  // installed
+    if (regularFileExists(projectRoot() + "/framework/include/mesh/voxlab/stage_contracts.h")) return "";  // installed
     const char* built = VOXLAB_STAGE_CONTRACTS_DIR;
     return built && regularFileExists(std::string(built) + "/voxlab/stage_contracts.h") ? built : "";
 }
@@ -167,14 +167,17 @@ std::string stageContractsDir() {
 }  // namespace
 
 std::vector<std::string> stageIncludeDirs() {
-    std::vector<std::string> contracts;
+    std::vector<std::string> modules, contracts;
     std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(projectRoot() + "/framework/include", ec))
+        if (entry.is_directory(ec)) modules.push_back(entry.path().string());
     for (const auto& entry : std::filesystem::directory_iterator(projectRoot() + "/framework/stages", ec)) {
         const std::filesystem::path dir = entry.path() / "include";
         if (std::filesystem::is_directory(dir, ec)) contracts.push_back(dir.string());
     }
+    std::sort(modules.begin(), modules.end());
     std::sort(contracts.begin(), contracts.end());
-    contracts.insert(contracts.begin(), projectRoot() + "/framework/include");
+    contracts.insert(contracts.begin(), modules.begin(), modules.end());
     if (const std::string generated = stageContractsDir(); stageExportsObject().empty() && !generated.empty())
         contracts.push_back(generated);
     return contracts;

@@ -1,6 +1,6 @@
 #pragma once
 // voxlab: where the project's files are (shaders/, datasets/, reference/ or
-// assignments/, framework/include for C++ stages).
+// assignments/, framework/include/MODULE for C++ stages).
 //
 // The root is, in order:
 //   1. $VOXLAB_ROOT when it is set;

@@ -93,12 +93,13 @@ std::string stageExportsObject();
 // was built (the .gch beside it), or "" when that is gone.
 std::string stagePreludeHeader();
 
-// Where a stage library's headers are: framework/include, then each stage's
-// contract folder (framework/stages/STAGE/include), in name order; and,
-// when the prebuilt exports are gone (their source is then compiled), the
-// folder of the generated voxlab/stage_contracts.h where framework/include
-// lacks it (an installed tree has it there): the build's, while it is still
-// there. The stage library's build reads these and nothing else of the
+// Where a stage library's headers are: each module's folder of
+// framework/include (framework/include/MODULE, holding voxlab/*.h), then
+// each stage's contract folder (framework/stages/STAGE/include), in name
+// order; and, when the prebuilt exports are gone (their source is then
+// compiled), the folder of the generated voxlab/stage_contracts.h where the
+// mesh module's headers lack it (an installed tree has it there): the
+// build's, while it is still there. The stage library's build reads these and nothing else of the
 // framework's headers.
 std::vector<std::string> stageIncludeDirs();
 

@@ -167,20 +167,21 @@ std::string stageContractsDir() {
 }  // namespace
 
 std::vector<std::string> stageIncludeDirs() {
-    std::vector<std::string> modules, contracts;
-    std::error_code ec;
-    for (const auto& entry : std::filesystem::directory_iterator(projectRoot() + "/framework/include", ec))
-        if (entry.is_directory(ec)) modules.push_back(entry.path().string());
-    for (const auto& entry : std::filesystem::directory_iterator(projectRoot() + "/framework/stages", ec)) {
-        const std::filesystem::path dir = entry.path() / "include";
-        if (std::filesystem::is_directory(dir, ec)) contracts.push_back(dir.string());
-    }
-    std::sort(modules.begin(), modules.end());
-    std::sort(contracts.begin(), contracts.end());
-    contracts.insert(contracts.begin(), modules.begin(), modules.end());
+    // The folders of `root` that hold a folder `inside`, in name order.
+    const auto holding = [](const std::string& root, const std::string& inside) {
+        std::vector<std::string> found;
+        std::error_code ec;
+        for (const auto& entry : std::filesystem::directory_iterator(root, ec))
+            if (std::filesystem::is_directory(entry.path() / inside, ec)) found.push_back(entry.path().string());
+        std::sort(found.begin(), found.end());
+        return found;
+    };
+    std::vector<std::string> dirs = holding(projectRoot() + "/framework/include", "voxlab");  // the modules'
+    for (const std::string& stage : holding(projectRoot() + "/framework/stages", "include"))  // the contracts
+        dirs.push_back(stage + "/include");
     if (const std::string generated = stageContractsDir(); stageExportsObject().empty() && !generated.empty())
-        contracts.push_back(generated);
-    return contracts;
+        dirs.push_back(generated);
+    return dirs;
 }
 
 // The flags are also framework/CMakeLists.txt's for the exports object and

@@ -66,13 +66,24 @@ void SceneReader::fail(const std::string& key, const std::string& message) const
     throw Error((where_.empty() ? "" : where_ + ": ") + key + ": " + message);
 }
 
+namespace {
+
+// Fails on the first key of `obj` (at `path`) for which known(key) is false.
+template <class Known>
+void refuseUnknownKeys(const SceneReader& reader, const json& obj, const std::string& path, Known known) {
+    for (const auto& item : obj.items())
+        if (!known(item.key())) reader.fail(path.empty() ? item.key() : path + "." + item.key(), "unknown key");
+}
+
+bool among(const std::string& key, std::initializer_list<const char*> names) {
+    return std::any_of(names.begin(), names.end(), [&](const char* name) { return key == name; });
+}
+
+}  // namespace
+
 void SceneReader::onlyKeys(const json& obj, const std::string& path,
                            std::initializer_list<const char*> allowed) const {
-    for (const auto& item : obj.items()) {
-        bool ok = false;
-        for (const char* a : allowed) ok = ok || item.key() == a;
-        if (!ok) fail(path.empty() ? item.key() : path + "." + item.key(), "unknown key");
-    }
+    refuseUnknownKeys(*this, obj, path, [&](const std::string& key) { return among(key, allowed); });
 }
 
 double SceneReader::number(const json& j, const std::string& key) const {
@@ -329,14 +340,12 @@ std::vector<ClipPlane> Parser::clipPlanes(const json& j) const {
 
 void Parser::topLevelKeys(const json& j) const {
     if (!j.is_object()) throw Error((where().empty() ? "" : where() + ": ") + "expected a JSON object");
-    static const char* const own[] = {"dataset", "renderer", "camera", "projection", "size", "sampling", "window",
-                                      "background", "parameters", "transfer_function", "roi", "labels",
-                                      "fusion", "clip_planes", "gpu_memory"};
-    for (const auto& item : j.items()) {
-        bool known = std::find(std::begin(own), std::end(own), item.key()) != std::end(own);
-        for (const SceneSection& section : stageSceneSections()) known = known || item.key() == section.key;
-        if (!known) fail(item.key(), "unknown key");
-    }
+    const std::vector<SceneSection>& sections = stageSceneSections();
+    refuseUnknownKeys(*this, j, "", [&](const std::string& key) {
+        return among(key, {"dataset", "renderer", "camera", "projection", "size", "sampling", "window", "background",
+                           "parameters", "transfer_function", "roi", "labels", "fusion", "clip_planes", "gpu_memory"}) ||
+               std::any_of(sections.begin(), sections.end(), [&](const SceneSection& s) { return key == s.key; });
+    });
 }
 
 Scene Parser::parse(const json& j) const {

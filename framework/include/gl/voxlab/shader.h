@@ -96,10 +96,10 @@ public:
     // implementation can bring its own.
     std::string resolve(const std::string& name, const std::string& includedFrom = "") const;
     // What an #include of `name` reads: resolve(name), or for a name
-    // "stages/*/FILE" every stage folder's FILE, in the stages' teaching order
-    // (framework/stages/stages.cmake; none when no stage has one). That is how a stage adds a segment to a
-    // framework shader without the shader naming it: ray.glsl includes
-    // "stages/*/ray_segment.glsl".
+    // "stages/*/FILE" every stage folder's FILE, in the stages' teaching
+    // order (framework/stages/stages.cmake; none when no stage has one).
+    // That is how a stage adds a segment to a framework shader without the
+    // shader naming it: ray.glsl includes "stages/*/ray_segment.glsl".
     std::vector<std::string> resolveAll(const std::string& name, const std::string& includedFrom = "") const;
     PreprocessedShader preprocess(const std::string& name, const ShaderConstants& constants = {}) const;
     GlslDialect dialect() const { return dialect_; }
